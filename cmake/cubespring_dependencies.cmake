@@ -1,0 +1,32 @@
+# SPDX-FileCopyrightText: 2026 cubespring authors
+# SPDX-License-Identifier: MIT
+# Every dependency is found as an imported target; a missing one stops configuration with the
+# Debian package that provides it.
+
+function(cubespring_require found package_name debian_package reason)
+  if(NOT ${found})
+    message(FATAL_ERROR
+      "cubespring: ${package_name} was not found; it is needed for ${reason}. "
+      "On Debian install it with: apt-get install ${debian_package}")
+  endif()
+endfunction()
+
+find_package(Eigen3 3.3 NO_MODULE QUIET)
+cubespring_require(Eigen3_FOUND "Eigen3" "libeigen3-dev" "the core library")
+
+if(CUBESPRING_WITH_OPENMP)
+  find_package(OpenMP QUIET COMPONENTS CXX)
+  cubespring_require(OpenMP_CXX_FOUND "OpenMP" "libgomp1 (part of g++)" "CUBESPRING_WITH_OPENMP=ON")
+endif()
+
+if(CUBESPRING_BUILD_APPS)
+  find_package(nlohmann_json 3 QUIET)
+  cubespring_require(nlohmann_json_FOUND "nlohmann_json" "nlohmann-json3-dev" "CUBESPRING_BUILD_APPS=ON (JSON output)")
+  find_package(CLI11 QUIET)
+  cubespring_require(CLI11_FOUND "CLI11" "libcli11-dev" "CUBESPRING_BUILD_APPS=ON (argument parsing)")
+endif()
+
+if(CUBESPRING_BUILD_TESTS)
+  find_package(GTest QUIET)
+  cubespring_require(GTest_FOUND "GoogleTest" "libgtest-dev" "CUBESPRING_BUILD_TESTS=ON")
+endif()

@@ -1,0 +1,24 @@
+# SPDX-FileCopyrightText: 2026 cubespring authors
+# SPDX-License-Identifier: MIT
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+install(TARGETS cubespring_core EXPORT cubespringTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT cubespringTargets NAMESPACE cubespring::
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/cubespring)
+
+configure_package_config_file(cmake/cubespringConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/cubespring)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/cubespringConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfig.cmake
+  ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfigVersion.cmake
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/cubespring)
+if(TARGET cubespring_app)
+  install(TARGETS cubespring_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()

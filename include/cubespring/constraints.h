@@ -1,0 +1,46 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cubespring/model.h"
+#include "cubespring/result.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+/// Nodes whose position is driven rather than simulated: fixed at rest, or moved to a prescribed
+/// position that the caller may change between steps (a kinematic tool or clamp). Integrators move
+/// a driven node to its target during the step and give it the velocity that gets it there.
+class Constraints {
+ public:
+  Constraints() = default;
+  explicit Constraints(const Model& model);
+
+  /// Fixes nodes at their rest position. Errors name an out-of-range index.
+  Status fix_nodes(const Model& model, const std::vector<int>& nodes);
+  /// Fixes every node whose rest position lies in [lower, upper] [m]; errors if none does.
+  Status fix_box(const Model& model, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper);
+  /// Drives a node to a position [m] or to rest plus a displacement [m].
+  Status prescribe_position(int node, const Eigen::Vector3d& position);
+  Status prescribe_displacement(const Model& model, int node, const Eigen::Vector3d& displacement);
+  /// Makes a node free again.
+  Status release(int node);
+
+  bool is_driven(int node) const { return driven_[node] != 0; }
+  const Eigen::Vector3d target(int node) const { return target_.col(node); }
+  int num_driven() const;
+  bool empty() const { return num_driven() == 0; }
+  int num_nodes() const { return static_cast<int>(driven_.size()); }
+
+ private:
+  Status check_index(int node) const;
+  std::vector<std::uint8_t> driven_;
+  Eigen::Matrix3Xd target_;
+};
+
+}  // namespace cubespring

@@ -1,0 +1,80 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "cubespring/lattice.h"
+#include "cubespring/model.h"
+#include "cubespring/result.h"
+#include "cubespring/state.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+/// The paper's virtual experiments on a block [0, nx hx] x [0, ny hy] x [0, nz hz].
+enum class Experiment {
+  kElongation,  ///< uniaxial traction on the x faces, lateral faces free: E and nu
+  kShear,       ///< shear: G in the xz plane (and, displacement controlled, in all three planes)
+  kInflation,   ///< pressure on every face: B
+  kCantilever,  ///< face x = 0 clamped, gravity along -z: tip deflection
+};
+const char* experiment_name(Experiment experiment);
+Result<Experiment> parse_experiment(const std::string& name);
+
+enum class ShearControl {
+  kDisplacement,  ///< affine shear u_x = gamma z imposed on every boundary node
+  kForce,         ///< the paper's way: opposite tangential tractions, body free
+};
+const char* shear_control_name(ShearControl control);
+
+struct ExperimentSettings {
+  Material material;
+  CellModel model = CellModel::kBaudet2007;
+  Eigen::Vector3i cells{1, 1, 1};                 ///< block size in cells
+  Eigen::Vector3d cell_size{0.01, 0.01, 0.01};    ///< [m]
+  /// Load size as the continuum strain it causes [-]: sigma = E S (elongation), gamma = S (shear),
+  /// each side shrinks by S (inflation, P = 3 B S). Not used by the cantilever.
+  double strain = 1e-4;
+  double gravity = 9.81;                          ///< cantilever only [m/s^2], along -z
+  ShearControl shear_control = ShearControl::kDisplacement;
+};
+
+/// Continuum values and what the lattice gave; a quantity the experiment does not measure is empty.
+struct Moduli {
+  std::optional<double> young_modulus;  ///< [Pa]
+  std::optional<double> poisson_ratio;  ///< [-]
+  std::optional<double> shear_modulus;  ///< [Pa]
+  std::optional<double> bulk_modulus;   ///< [Pa]
+};
+
+struct ExperimentResult {
+  Experiment experiment = Experiment::kElongation;
+  ExperimentSettings settings;
+  Moduli measured;
+  Moduli expected;
+  /// Relative errors for moduli, absolute for the Poisson ratio.
+  Moduli error;
+  /// Cantilever: mean z displacement of the nodes of face x = L [m] (negative when it sags), and
+  /// the Euler-Bernoulli and Timoshenko (Cowper's shear coefficient) predictions.
+  std::optional<double> tip_deflection;
+  std::optional<double> euler_bernoulli;
+  std::optional<double> timoshenko;
+  /// Displacement-controlled shear: the lattice's shear moduli in the yz, xz and xy planes [Pa],
+  /// and what the cell shape gives for them (all equal to G for cubic cells).
+  std::optional<Eigen::Vector3d> shear_moduli;
+  std::optional<Eigen::Vector3d> expected_shear_moduli;
+  Model model;
+  State state;   ///< the static equilibrium
+  int load_steps = 0;
+  int newton_iterations = 0;
+};
+
+/// Builds the block, applies the experiment's loads and constraints, solves for static equilibrium
+/// and measures. Errors name the invalid setting or the failed solve.
+Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings);
+
+}  // namespace cubespring

@@ -1,0 +1,59 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cubespring/model.h"
+#include "cubespring/state.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+/// External loads on a body.
+struct Loads {
+  Eigen::Vector3d gravity{0.0, 0.0, 0.0};  ///< [m/s^2], acts on every node's mass
+  Eigen::Matrix3Xd nodal_forces;           ///< (3 x num_nodes) [N], or empty for none
+};
+
+/// What compute_forces() includes.
+struct ForceOptions {
+  bool damping = true;  ///< Rayleigh damping from the velocities
+  int threads = 1;      ///< threads for the force passes; the result does not depend on it
+};
+
+/// Scratch arrays of the force passes, kept between calls so that a step allocates nothing.
+struct ForceWorkspace {
+  std::vector<double> spring_length;      ///< current length [m]
+  std::vector<double> spring_rate;        ///< d(length)/dt [m/s]
+  std::vector<double> spring_tension;     ///< total tension (spring + correction + damping) [N]
+  Eigen::Matrix3Xd cell_tension;          ///< correction tension on each axis' edges [N]
+  Eigen::Matrix3Xd spring_force;          ///< force on spring_nodes[s][0] [N] (gather pass)
+  void resize(const Model& model);
+};
+
+/// Total force on every node [N] (3 x num_nodes): springs, correction, inversion recovery,
+/// damping, gravity and nodal loads. docs/model-baudet2007.md gives the formulas.
+void compute_forces(const Model& model, const State& state, const Loads& loads,
+                    const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces);
+
+/// Internal elastic energy [J]: springs, correction and inversion recovery.
+double elastic_energy(const Model& model, const Eigen::Matrix3Xd& positions);
+/// Elastic energy minus the work of gravity and nodal loads from the rest state [J].
+double potential_energy(const Model& model, const Loads& loads, const Eigen::Matrix3Xd& positions);
+/// 1/2 sum m v^2 [J].
+double kinetic_energy(const Model& model, const State& state);
+
+/// Signed volume [m^3] of the parallelepiped spanned by a cell's mean edge vectors; the rest
+/// volume for an undeformed cell, negative for a cell turned inside out.
+double cell_signed_volume(const Model& model, const Eigen::Matrix3Xd& positions, int cell);
+
+/// A cell counts as crushed, and its inversion recovery acts, when its signed volume falls below
+/// this fraction of its rest volume (docs/model-baudet2007.md section 5).
+inline constexpr double kCrushedVolumeFraction = 0.2;
+/// Inversion recovery stiffness as a multiple of the cell material's Young's modulus.
+inline constexpr double kInversionStiffnessFactor = 10.0;
+
+}  // namespace cubespring

@@ -1,0 +1,84 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "cubespring/constraints.h"
+#include "cubespring/forces.h"
+#include "cubespring/model.h"
+#include "cubespring/state.h"
+#include "cubespring/stiffness.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+enum class Integrator {
+  kSymplecticEuler,  ///< v += dt a(x, v); x += dt v. Explicit, conditionally stable.
+  kVelocityVerlet,   ///< half kick, drift, half kick. Explicit, conditionally stable.
+  kImplicitEuler,    ///< backward Euler linearised once per step, solved by conjugate gradients.
+};
+const char* integrator_name(Integrator integrator);
+
+struct StepSettings {
+  Integrator integrator = Integrator::kSymplecticEuler;
+  double time_step = 1e-4;              ///< dt [s], > 0
+  int threads = 1;                      ///< force-pass threads; results do not depend on it
+  double solver_tolerance = 1e-6;       ///< implicit: CG relative residual
+  int solver_max_iterations = 2000;     ///< implicit: CG iteration cap
+  /// A node faster than this is taken as a blow-up [m/s]; 0 means 10 times the fastest pressure
+  /// wave speed of the body's materials.
+  double speed_limit = 0.0;
+};
+
+enum class StepStatus {
+  kOk,            ///< the state advanced by one step
+  kUnstable,      ///< positions or velocities are no longer finite, or a node exceeded the speed
+                  ///< limit; the state is left as it was before the step
+  kSolverFailed,  ///< implicit: CG did not reach the tolerance; the state is left unchanged
+};
+const char* step_status_name(StepStatus status);
+
+struct StepReport {
+  StepStatus status = StepStatus::kOk;
+  std::string message;          ///< what went wrong, with figures; empty when ok
+  int solver_iterations = 0;    ///< implicit: CG iterations
+  double solver_residual = 0;   ///< implicit: CG relative residual reached
+  bool ok() const { return status == StepStatus::kOk; }
+};
+
+/// Advances a body's state by one time step. Keeps the scratch arrays of its integrator between
+/// steps, so stepping allocates nothing after the first step. One stepper per body.
+class Stepper {
+ public:
+  explicit Stepper(const Model& model);
+
+  StepReport step(const Model& model, const Constraints& constraints, const Loads& loads,
+                  const StepSettings& settings, State& state);
+
+ private:
+  StepReport explicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
+                           const StepSettings& settings, State& state);
+  StepReport implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
+                           const StepSettings& settings, State& state);
+  StepReport check(const Model& model, const StepSettings& settings, const State& candidate) const;
+
+  ForceWorkspace workspace_;
+  Eigen::Matrix3Xd forces_;
+  State candidate_;
+  std::unique_ptr<StiffnessAssembler> assembler_;  // built on the first implicit step
+  SparseMatrix system_;
+};
+
+/// The largest time step [s] at which the explicit integrators stay stable for this body at rest:
+/// 2 / omega_max, with omega_max^2 bounded by the Gershgorin bound of M^-1 K (rigorous for the
+/// linearised body), reduced for stiffness-proportional damping.
+double max_stable_time_step(const Model& model);
+
+/// Fastest pressure wave speed among the body's materials [m/s].
+double max_wave_speed(const Model& model);
+
+}  // namespace cubespring

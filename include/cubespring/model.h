@@ -1,0 +1,93 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cubespring/lattice.h"
+#include "cubespring/result.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+/// Corner c of a cell sits at offset (c & 1, (c >> 1) & 1, (c >> 2) & 1) cells from its first corner.
+/// Edges along axis a join corner c (bit a clear) to c | (1 << a); the 12 edges of a cell are stored
+/// axis by axis: x edges 0-3, y edges 4-7, z edges 8-11.
+inline constexpr int kCornersPerCell = 8;
+inline constexpr int kEdgesPerCell = 12;
+inline constexpr int kEdgesPerAxis = 4;
+
+/// The constant part of a simulated body: topology, rest state, masses and stiffnesses. Built once
+/// by build_model(); the time-varying part lives in State. Arrays are flat, one entry per item.
+struct Model {
+  CellModel cell_model = CellModel::kBaudet2007;
+  Eigen::Vector3d cell_size{0, 0, 0};  ///< (hx, hy, hz) [m]
+  Eigen::Vector3d origin{0, 0, 0};     ///< [m]
+  std::vector<Material> materials;
+
+  // nodes (num_nodes)
+  Eigen::Matrix3Xd rest_positions;       ///< (3 x num_nodes) [m]
+  std::vector<Eigen::Vector3i> node_grid_index;  ///< grid index of each node
+  Eigen::VectorXd mass;                  ///< [kg], lumped: each cell gives 1/8 of its mass to each corner
+  Eigen::VectorXd mass_damping;          ///< Rayleigh alpha times mass [kg/s]
+
+  // springs (num_springs); spring s pulls spring_nodes[s][0] and [1] together when stretched
+  std::vector<std::array<int, 2>> spring_nodes;
+  std::vector<double> spring_rest_length;  ///< [m]
+  std::vector<double> spring_stiffness;    ///< [N/m], summed over the cells that share the spring
+  std::vector<double> spring_damping;      ///< beta times stiffness, summed over cells [N s/m]
+  /// Cells whose correction acts on spring s: entries spring_cell_offset[s] .. [s+1]-1 of
+  /// spring_cell_axis, each cell * 3 + axis (edges only; diagonals have none).
+  std::vector<int> spring_cell_offset;
+  std::vector<int> spring_cell_axis;
+
+  // cells (num_cells)
+  std::vector<Eigen::Vector3i> cell_grid_index;
+  std::vector<std::array<int, kCornersPerCell>> cell_nodes;
+  std::vector<std::array<int, kEdgesPerCell>> cell_edges;  ///< spring index of each edge
+  std::vector<int> cell_material;
+  /// Correction stiffness D [Pa] of each cell (symmetric 3x3): the correction energy is
+  /// 1/2 V0 eps^T D eps with eps the mean edge strains (docs/model-baudet2007.md, section 3).
+  std::vector<Eigen::Matrix3d> cell_correction;
+  std::vector<double> cell_inversion_stiffness;  ///< [Pa], see docs/model-baudet2007.md section 5
+
+  // node -> spring incidence, for a gather in a fixed order: entries node_spring_offset[n] ..
+  // [n+1]-1 of node_spring, each spring * 2 + side (side 0: the node is spring_nodes[s][0]).
+  std::vector<int> node_spring_offset;
+  std::vector<int> node_spring;
+
+  int num_nodes() const { return static_cast<int>(rest_positions.cols()); }
+  int num_springs() const { return static_cast<int>(spring_nodes.size()); }
+  int num_cells() const { return static_cast<int>(cell_nodes.size()); }
+  double rest_cell_volume() const { return cell_size.prod(); }
+  double total_mass() const { return mass.sum(); }
+  /// Index of the node at a grid index, or -1 when no cell uses it.
+  int node_at(const Eigen::Vector3i& grid_index) const;
+
+  /// Nodes whose rest position lies in the closed box [lower, upper] [m].
+  std::vector<int> nodes_in_box(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) const;
+
+ private:
+  friend Result<Model> build_model(const LatticeDesc& desc);
+  std::vector<std::int64_t> sorted_node_keys_;  // grid key of each node, ascending (= node order)
+};
+
+/// Validates the description (cell size, materials, cell indices, the model's validity for the
+/// cell shape) and builds the model. Errors name the value at fault and the allowed range.
+Result<Model> build_model(const LatticeDesc& desc);
+
+/// Per-cell spring stiffnesses and correction of one material and cell shape
+/// (docs/model-baudet2007.md, sections 2-4).
+struct CellCalibration {
+  Eigen::Vector3d edge_stiffness;  ///< per-cell share of each edge along x, y, z [N/m]
+  double diagonal_stiffness = 0;   ///< each of the 4 body diagonals [N/m]
+  Eigen::Matrix3d correction;      ///< D [Pa]
+};
+Result<CellCalibration> calibrate_cell(CellModel model, const Material& material,
+                                       const Eigen::Vector3d& cell_size);
+
+}  // namespace cubespring

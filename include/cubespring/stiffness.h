@@ -1,0 +1,52 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "cubespring/model.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+
+/// Which stiffness matrix to assemble.
+enum class StiffnessKind {
+  /// The exact Hessian of the elastic energy (tested against finite differences). Indefinite for
+  /// compressed springs and, through the correction, for nu > 1/4.
+  kExact,
+  /// A positive semi-definite approximation for implicit steps (docs/model-baudet2007.md section 6):
+  /// compressive geometric terms dropped and the correction's D replaced by its PSD part.
+  kPositiveSemiDefinite,
+};
+
+/// Assembles stiffness_scale * K + damping_scale * K_beta into a sparsity pattern built once:
+/// K the stiffness at the given positions [N/m], K_beta its Rayleigh damping part (each spring's
+/// and cell's material stiffness times the material's beta) [N s/m]. Rows and columns are
+/// 3 * node + axis; every pair of nodes that share a cell or a spring has a 3x3 block.
+class StiffnessAssembler {
+ public:
+  explicit StiffnessAssembler(const Model& model);
+
+  void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,
+                double stiffness_scale, double damping_scale, SparseMatrix& matrix);
+
+  /// The matrix with the pattern and every value zero.
+  const SparseMatrix& pattern() const { return pattern_; }
+
+ private:
+  void add_block(SparseMatrix& matrix, int row_node, int position, const Eigen::Matrix3d& block) const;
+
+  SparseMatrix pattern_;
+  std::vector<int> diagonal_position_;                    // per node: own position in its row
+  std::vector<std::array<int, 2>> spring_position_;      // per spring: j in row i, i in row j
+  std::vector<std::array<int, 64>> cell_position_;       // per cell: corner q in row of corner p
+  std::vector<Eigen::Matrix3d> positive_correction_;      // per cell: PSD part of D
+};
+
+}  // namespace cubespring

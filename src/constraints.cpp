@@ -1,0 +1,65 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "cubespring/constraints.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace cubespring {
+
+Constraints::Constraints(const Model& model)
+    : driven_(model.num_nodes(), 0), target_(model.rest_positions) {}
+
+Status Constraints::check_index(int node) const {
+  if (node < 0 || node >= num_nodes()) {
+    return Status::error("node " + std::to_string(node) + " is out of range: the body has " +
+                         std::to_string(num_nodes()) + " nodes");
+  }
+  return {};
+}
+
+Status Constraints::fix_nodes(const Model& model, const std::vector<int>& nodes) {
+  for (int node : nodes) {
+    if (Status status = check_index(node); !status) return status;
+  }
+  for (int node : nodes) {
+    driven_[node] = 1;
+    target_.col(node) = model.rest_positions.col(node);
+  }
+  return {};
+}
+
+Status Constraints::fix_box(const Model& model, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
+  const std::vector<int> nodes = model.nodes_in_box(lower, upper);
+  if (nodes.empty()) {
+    std::ostringstream message;
+    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
+    return Status::error(message.str());
+  }
+  return fix_nodes(model, nodes);
+}
+
+Status Constraints::prescribe_position(int node, const Eigen::Vector3d& position) {
+  if (Status status = check_index(node); !status) return status;
+  if (!position.allFinite()) return Status::error("node " + std::to_string(node) + ": target position is not finite");
+  driven_[node] = 1;
+  target_.col(node) = position;
+  return {};
+}
+
+Status Constraints::prescribe_displacement(const Model& model, int node, const Eigen::Vector3d& displacement) {
+  if (Status status = check_index(node); !status) return status;
+  return prescribe_position(node, model.rest_positions.col(node) + displacement);
+}
+
+Status Constraints::release(int node) {
+  if (Status status = check_index(node); !status) return status;
+  driven_[node] = 0;
+  return {};
+}
+
+int Constraints::num_driven() const {
+  return static_cast<int>(std::count(driven_.begin(), driven_.end(), std::uint8_t{1}));
+}
+
+}  // namespace cubespring

@@ -1,0 +1,225 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "cubespring/integrator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/IterativeLinearSolvers>
+
+namespace cubespring {
+namespace {
+
+// Driven nodes reach their target at the end of the step with the velocity that gets them there.
+void drive_nodes(const Constraints& constraints, double dt, const State& start, State& end) {
+  if (constraints.num_nodes() == 0) return;
+  for (int n = 0; n < constraints.num_nodes(); ++n) {
+    if (!constraints.is_driven(n)) continue;
+    end.positions.col(n) = constraints.target(n);
+    end.velocities.col(n) = (constraints.target(n) - start.positions.col(n)) / dt;
+  }
+}
+
+// Applies M^-1 to forces in place (columns scaled by 1 / mass).
+void divide_by_mass(const Model& model, Eigen::Matrix3Xd& forces) {
+  for (int n = 0; n < model.num_nodes(); ++n) forces.col(n) /= model.mass[n];
+}
+
+}  // namespace
+
+const char* integrator_name(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kSymplecticEuler: return "symplectic-euler";
+    case Integrator::kVelocityVerlet: return "velocity-verlet";
+    case Integrator::kImplicitEuler: return "implicit-euler";
+  }
+  return "unknown";
+}
+
+const char* step_status_name(StepStatus status) {
+  switch (status) {
+    case StepStatus::kOk: return "ok";
+    case StepStatus::kUnstable: return "unstable";
+    case StepStatus::kSolverFailed: return "solver-failed";
+  }
+  return "unknown";
+}
+
+double max_wave_speed(const Model& model) {
+  double speed = 0.0;
+  for (const Material& material : model.materials) speed = std::max(speed, pressure_wave_speed(material));
+  return speed;
+}
+
+Stepper::Stepper(const Model& model) {
+  workspace_.resize(model);
+  forces_.setZero(3, model.num_nodes());
+}
+
+StepReport Stepper::step(const Model& model, const Constraints& constraints, const Loads& loads,
+                         const StepSettings& settings, State& state) {
+  if (!(settings.time_step > 0.0) || !std::isfinite(settings.time_step)) {
+    std::ostringstream message;
+    message << "time_step = " << settings.time_step << " s: the time step must be a finite number > 0";
+    return {StepStatus::kUnstable, message.str()};
+  }
+  if (settings.integrator == Integrator::kImplicitEuler) {
+    return implicit_step(model, constraints, loads, settings, state);
+  }
+  return explicit_step(model, constraints, loads, settings, state);
+}
+
+StepReport Stepper::check(const Model& model, const StepSettings& settings, const State& candidate) const {
+  const double limit = settings.speed_limit > 0.0 ? settings.speed_limit : 10.0 * max_wave_speed(model);
+  if (!candidate.positions.allFinite() || !candidate.velocities.allFinite()) {
+    return {StepStatus::kUnstable, "positions or velocities became NaN or infinite"};
+  }
+  const double fastest = std::sqrt(candidate.velocities.colwise().squaredNorm().maxCoeff());
+  if (fastest > limit) {
+    std::ostringstream message;
+    message << "a node moves at " << fastest << " m/s, above the limit of " << limit
+            << " m/s: the step is unstable (explicit time step above "
+            << max_stable_time_step(model) << " s?)";
+    return {StepStatus::kUnstable, message.str()};
+  }
+  return {};
+}
+
+StepReport Stepper::explicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
+                                  const StepSettings& settings, State& state) {
+  const double dt = settings.time_step;
+  const ForceOptions options{true, settings.threads};
+  candidate_ = state;
+  if (settings.integrator == Integrator::kSymplecticEuler) {
+    // v += dt M^-1 f(x, v); x += dt v
+    compute_forces(model, candidate_, loads, options, workspace_, forces_);
+    divide_by_mass(model, forces_);
+    candidate_.velocities += dt * forces_;
+    candidate_.positions += dt * candidate_.velocities;
+  } else {
+    // half kick, drift, then a half kick with the force at the new positions (damping taken at
+    // the half-step velocity)
+    compute_forces(model, candidate_, loads, options, workspace_, forces_);
+    divide_by_mass(model, forces_);
+    candidate_.velocities += (0.5 * dt) * forces_;
+    candidate_.positions += dt * candidate_.velocities;
+    drive_nodes(constraints, dt, state, candidate_);
+    compute_forces(model, candidate_, loads, options, workspace_, forces_);
+    divide_by_mass(model, forces_);
+    candidate_.velocities += (0.5 * dt) * forces_;
+  }
+  drive_nodes(constraints, dt, state, candidate_);
+  candidate_.time = state.time + dt;
+  StepReport report = check(model, settings, candidate_);
+  if (report.ok()) std::swap(state, candidate_);
+  return report;
+}
+
+// Backward Euler linearised at the start of the step (docs/model-baudet2007.md section 6):
+//   (M (1 + dt alpha) + dt K_beta + dt^2 K) v+ = M v + dt f(x),  x+ = x + dt v+,
+// with f the undamped force, K the PSD stiffness; driven nodes' v+ is known and eliminated.
+StepReport Stepper::implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
+                                  const StepSettings& settings, State& state) {
+  const double dt = settings.time_step;
+  const int num_nodes = model.num_nodes();
+  if (!assembler_) assembler_ = std::make_unique<StiffnessAssembler>(model);
+
+  compute_forces(model, state, loads, ForceOptions{false, settings.threads}, workspace_, forces_);
+  assembler_->assemble(model, state.positions, StiffnessKind::kPositiveSemiDefinite, dt * dt, dt, system_);
+
+  Eigen::VectorXd rhs(3 * num_nodes);
+  Eigen::VectorXd guess(3 * num_nodes);
+  std::vector<std::uint8_t> driven(3 * num_nodes, 0);
+  for (int n = 0; n < num_nodes; ++n) {
+    const double mass = model.mass[n];
+    const double mass_term = mass + dt * model.mass_damping[n];
+    for (int a = 0; a < 3; ++a) {
+      rhs[3 * n + a] = mass * state.velocities(a, n) + dt * forces_(a, n);
+      guess[3 * n + a] = state.velocities(a, n);
+    }
+    // the mass sits on the diagonal block's own entries
+    const int* outer = system_.outerIndexPtr();
+    const int* inner = system_.innerIndexPtr();
+    double* values = system_.valuePtr();
+    for (int a = 0; a < 3; ++a) {
+      const int row = 3 * n + a;
+      const int* hit = std::lower_bound(inner + outer[row], inner + outer[row + 1], row);
+      values[hit - inner] += mass_term;
+    }
+    if (n < constraints.num_nodes() && constraints.is_driven(n)) {
+      const Eigen::Vector3d velocity = (constraints.target(n) - state.positions.col(n)) / dt;
+      for (int a = 0; a < 3; ++a) {
+        driven[3 * n + a] = 1;
+        guess[3 * n + a] = velocity[a];
+      }
+    }
+  }
+
+  // eliminate driven unknowns: move their columns to the right-hand side, identity rows
+  if (constraints.num_driven() > 0) {
+    const int* outer = system_.outerIndexPtr();
+    const int* inner = system_.innerIndexPtr();
+    double* values = system_.valuePtr();
+    for (int row = 0; row < 3 * num_nodes; ++row) {
+      for (int e = outer[row]; e < outer[row + 1]; ++e) {
+        const int col = inner[e];
+        if (driven[row]) {
+          values[e] = row == col ? 1.0 : 0.0;
+        } else if (driven[col]) {
+          rhs[row] -= values[e] * guess[col];
+          values[e] = 0.0;
+        }
+      }
+      if (driven[row]) rhs[row] = guess[row];
+    }
+  }
+
+  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> solver;
+  solver.setTolerance(settings.solver_tolerance);
+  solver.setMaxIterations(settings.solver_max_iterations);
+  solver.compute(system_);
+  const Eigen::VectorXd velocity = solver.solveWithGuess(rhs, guess);
+  StepReport report;
+  report.solver_iterations = static_cast<int>(solver.iterations());
+  report.solver_residual = solver.error();
+  if (solver.info() != Eigen::Success || !velocity.allFinite()) {
+    std::ostringstream message;
+    message << "conjugate gradients stopped after " << solver.iterations() << " iterations at relative residual "
+            << solver.error() << " (tolerance " << settings.solver_tolerance << ")";
+    report.status = StepStatus::kSolverFailed;
+    report.message = message.str();
+    return report;
+  }
+
+  candidate_ = state;
+  candidate_.velocities = Eigen::Map<const Eigen::Matrix3Xd>(velocity.data(), 3, num_nodes);
+  candidate_.positions += dt * candidate_.velocities;
+  drive_nodes(constraints, dt, state, candidate_);
+  candidate_.time = state.time + dt;
+  StepReport checked = check(model, settings, candidate_);
+  if (!checked.ok()) return checked;
+  std::swap(state, candidate_);
+  return report;
+}
+
+double max_stable_time_step(const Model& model) {
+  // Gershgorin: omega_max^2 <= max_n (1/m_n) sum_m |K_nm| over the node's row at rest
+  StiffnessAssembler assembler(model);
+  SparseMatrix stiffness;
+  assembler.assemble(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0, stiffness);
+  double omega_sq = 0.0;
+  double beta = 0.0;
+  for (const Material& material : model.materials) beta = std::max(beta, material.stiffness_damping);
+  for (int row = 0; row < stiffness.rows(); ++row) {
+    double sum = 0.0;
+    for (SparseMatrix::InnerIterator it(stiffness, row); it; ++it) sum += std::abs(it.value());
+    omega_sq = std::max(omega_sq, sum / model.mass[row / 3]);
+  }
+  const double omega = std::sqrt(omega_sq);
+  // with damping ratio zeta = beta omega / 2 the limit is 2 / omega (sqrt(1 + zeta^2) - zeta)
+  const double zeta = 0.5 * beta * omega;
+  return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta);
+}
+
+}  // namespace cubespring

@@ -1,0 +1,61 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "cubespring/material.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace cubespring {
+namespace {
+
+std::string format(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+}  // namespace
+
+Status validate(const Material& material) {
+  if (!std::isfinite(material.young_modulus) || material.young_modulus <= 0.0) {
+    return Status::error("young_modulus = " + format(material.young_modulus) +
+                         " Pa: Young's modulus must be a finite number > 0");
+  }
+  if (!std::isfinite(material.poisson_ratio) || material.poisson_ratio <= kMinPoissonRatio ||
+      material.poisson_ratio >= kMaxPoissonRatio) {
+    return Status::error("poisson_ratio = " + format(material.poisson_ratio) +
+                         ": the cube model needs " + format(kMinPoissonRatio) + " < nu < " +
+                         format(kMaxPoissonRatio) +
+                         " (edge springs vanish at -0.25, the bulk modulus is infinite at 0.5)");
+  }
+  if (!std::isfinite(material.density) || material.density <= 0.0) {
+    return Status::error("density = " + format(material.density) +
+                         " kg/m^3: density must be a finite number > 0");
+  }
+  if (!std::isfinite(material.mass_damping) || material.mass_damping < 0.0) {
+    return Status::error("mass_damping = " + format(material.mass_damping) +
+                         " 1/s: Rayleigh alpha must be a finite number >= 0");
+  }
+  if (!std::isfinite(material.stiffness_damping) || material.stiffness_damping < 0.0) {
+    return Status::error("stiffness_damping = " + format(material.stiffness_damping) +
+                         " s: Rayleigh beta must be a finite number >= 0");
+  }
+  return {};
+}
+
+double shear_modulus(const Material& m) { return m.young_modulus / (2.0 * (1.0 + m.poisson_ratio)); }
+
+double bulk_modulus(const Material& m) {
+  return m.young_modulus / (3.0 * (1.0 - 2.0 * m.poisson_ratio));
+}
+
+double lame_lambda(const Material& m) {
+  const double nu = m.poisson_ratio;
+  return m.young_modulus * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+}
+
+double p_wave_modulus(const Material& m) { return lame_lambda(m) + 2.0 * shear_modulus(m); }
+
+double pressure_wave_speed(const Material& m) { return std::sqrt(p_wave_modulus(m) / m.density); }
+
+}  // namespace cubespring

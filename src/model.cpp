@@ -1,0 +1,247 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Builds the flat arrays of a Model from a set of cells: nodes shared by touching cells, edge
+// springs shared by up to four cells (stiffness summed), four body diagonals per cell.
+#include "cubespring/model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "cubespring/forces.h"
+
+namespace cubespring {
+namespace {
+
+// Grid indices are packed into one sortable key; 21 bits per axis allow +-1e6 cells.
+constexpr std::int64_t kAxisBits = 21;
+constexpr std::int64_t kAxisOffset = std::int64_t{1} << (kAxisBits - 1);
+constexpr int kMaxGridIndex = static_cast<int>(kAxisOffset) - 2;
+
+// z-major, x fastest, so that node order follows memory order of a box.
+std::int64_t grid_key(const Eigen::Vector3i& index) {
+  return ((index.z() + kAxisOffset) << (2 * kAxisBits)) | ((index.y() + kAxisOffset) << kAxisBits) |
+         (index.x() + kAxisOffset);
+}
+
+Eigen::Vector3i corner_offset(int corner) { return {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1}; }
+
+Status check_desc(const LatticeDesc& desc) {
+  if (!desc.cell_size.allFinite() || desc.cell_size.minCoeff() <= 0.0) {
+    std::ostringstream message;
+    message << "cell_size = (" << desc.cell_size.transpose() << ") m: each side must be > 0";
+    return Status::error(message.str());
+  }
+  if (!desc.origin.allFinite()) return Status::error("origin is not finite");
+  if (desc.cells.empty()) return Status::error("the lattice has no cells");
+  if (desc.materials.empty()) return Status::error("the lattice has no material");
+  for (std::size_t m = 0; m < desc.materials.size(); ++m) {
+    if (Status status = validate(desc.materials[m]); !status) {
+      return Status::error("material " + std::to_string(m) + ": " + status.message());
+    }
+  }
+  if (!desc.cell_material.empty() && desc.cell_material.size() != desc.cells.size()) {
+    return Status::error("cell_material has " + std::to_string(desc.cell_material.size()) +
+                         " entries for " + std::to_string(desc.cells.size()) + " cells");
+  }
+  for (std::size_t c = 0; c < desc.cell_material.size(); ++c) {
+    const int m = desc.cell_material[c];
+    if (m < 0 || m >= static_cast<int>(desc.materials.size())) {
+      return Status::error("cell " + std::to_string(c) + " refers to material " + std::to_string(m) +
+                           ", but there are " + std::to_string(desc.materials.size()));
+    }
+  }
+  for (std::size_t c = 0; c < desc.cells.size(); ++c) {
+    if (desc.cells[c].cwiseAbs().maxCoeff() > kMaxGridIndex) {
+      return Status::error("cell " + std::to_string(c) + " has a grid index beyond +-" +
+                           std::to_string(kMaxGridIndex));
+    }
+  }
+  return {};
+}
+
+struct EdgeRecord {
+  int node0, node1;
+  int cell, axis;
+  double stiffness, damping;
+};
+
+}  // namespace
+
+int Model::node_at(const Eigen::Vector3i& grid_index) const {
+  const std::int64_t key = grid_key(grid_index);
+  auto it = std::lower_bound(sorted_node_keys_.begin(), sorted_node_keys_.end(), key);
+  if (it == sorted_node_keys_.end() || *it != key) return -1;
+  return static_cast<int>(it - sorted_node_keys_.begin());
+}
+
+std::vector<int> Model::nodes_in_box(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) const {
+  std::vector<int> nodes;
+  for (int n = 0; n < num_nodes(); ++n) {
+    const Eigen::Vector3d p = rest_positions.col(n);
+    if ((p.array() >= lower.array()).all() && (p.array() <= upper.array()).all()) nodes.push_back(n);
+  }
+  return nodes;
+}
+
+Result<Model> build_model(const LatticeDesc& desc) {
+  if (Status status = check_desc(desc); !status) return status;
+  Model model;
+  model.cell_model = desc.model;
+  model.cell_size = desc.cell_size;
+  model.origin = desc.origin;
+  model.materials = desc.materials;
+
+  // calibrate each material once for this cell shape
+  std::vector<CellCalibration> calibrations;
+  for (std::size_t m = 0; m < desc.materials.size(); ++m) {
+    Result<CellCalibration> calibration = calibrate_cell(desc.model, desc.materials[m], desc.cell_size);
+    if (!calibration) return Status::error("material " + std::to_string(m) + ": " + calibration.message());
+    calibrations.push_back(calibration.value());
+  }
+
+  // cells in grid order, duplicates refused
+  std::vector<int> cell_order(desc.cells.size());
+  for (std::size_t c = 0; c < cell_order.size(); ++c) cell_order[c] = static_cast<int>(c);
+  std::sort(cell_order.begin(), cell_order.end(),
+            [&](int a, int b) { return grid_key(desc.cells[a]) < grid_key(desc.cells[b]); });
+  for (std::size_t c = 1; c < cell_order.size(); ++c) {
+    if (desc.cells[cell_order[c]] == desc.cells[cell_order[c - 1]]) {
+      std::ostringstream message;
+      message << "cell (" << desc.cells[cell_order[c]].transpose() << ") is listed twice";
+      return Status::error(message.str());
+    }
+  }
+
+  // nodes: the sorted set of every cell corner
+  std::vector<std::int64_t>& keys = model.sorted_node_keys_;
+  keys.reserve(cell_order.size() * 2);
+  for (const Eigen::Vector3i& cell : desc.cells) {
+    for (int corner = 0; corner < kCornersPerCell; ++corner) keys.push_back(grid_key(cell + corner_offset(corner)));
+  }
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  const int num_nodes = static_cast<int>(keys.size());
+  model.rest_positions.resize(3, num_nodes);
+  model.node_grid_index.resize(num_nodes);
+  const std::int64_t mask = (std::int64_t{1} << kAxisBits) - 1;
+  for (int n = 0; n < num_nodes; ++n) {
+    const Eigen::Vector3i index(static_cast<int>((keys[n] & mask) - kAxisOffset),
+                                static_cast<int>(((keys[n] >> kAxisBits) & mask) - kAxisOffset),
+                                static_cast<int>((keys[n] >> (2 * kAxisBits)) - kAxisOffset));
+    model.node_grid_index[n] = index;
+    model.rest_positions.col(n) = desc.origin + index.cast<double>().cwiseProduct(desc.cell_size);
+  }
+  model.mass = Eigen::VectorXd::Zero(num_nodes);
+  model.mass_damping = Eigen::VectorXd::Zero(num_nodes);
+
+  // cells: corners, material, correction, lumped mass; edges collected for merging
+  const int num_cells = static_cast<int>(cell_order.size());
+  const double volume = desc.cell_size.prod();
+  model.cell_grid_index.resize(num_cells);
+  model.cell_nodes.resize(num_cells);
+  model.cell_edges.resize(num_cells);
+  model.cell_material.resize(num_cells);
+  model.cell_correction.resize(num_cells);
+  model.cell_inversion_stiffness.resize(num_cells);
+  std::vector<EdgeRecord> edges;
+  edges.reserve(static_cast<std::size_t>(num_cells) * kEdgesPerCell);
+  for (int c = 0; c < num_cells; ++c) {
+    const int source = cell_order[c];
+    const int m = desc.cell_material.empty() ? 0 : desc.cell_material[source];
+    const Material& material = desc.materials[m];
+    const CellCalibration& calibration = calibrations[m];
+    model.cell_grid_index[c] = desc.cells[source];
+    model.cell_material[c] = m;
+    model.cell_correction[c] = calibration.correction;
+    model.cell_inversion_stiffness[c] = kInversionStiffnessFactor * material.young_modulus;
+    for (int corner = 0; corner < kCornersPerCell; ++corner) {
+      const int node = model.node_at(desc.cells[source] + corner_offset(corner));
+      model.cell_nodes[c][corner] = node;
+      model.mass[node] += material.density * volume / kCornersPerCell;
+      model.mass_damping[node] += material.mass_damping * material.density * volume / kCornersPerCell;
+    }
+    for (int axis = 0; axis < 3; ++axis) {
+      for (int corner = 0; corner < kCornersPerCell; ++corner) {
+        if (corner & (1 << axis)) continue;
+        const int node0 = model.cell_nodes[c][corner];
+        const int node1 = model.cell_nodes[c][corner | (1 << axis)];
+        const double k = calibration.edge_stiffness[axis];
+        edges.push_back({node0, node1, c, axis, k, material.stiffness_damping * k});
+      }
+    }
+  }
+
+  // springs: merged edges plus diagonals, sorted by (first node, second node) for streaming
+  std::sort(edges.begin(), edges.end(), [](const EdgeRecord& a, const EdgeRecord& b) {
+    return a.node0 != b.node0 ? a.node0 < b.node0 : (a.node1 != b.node1 ? a.node1 < b.node1 : a.cell < b.cell);
+  });
+  struct SpringRecord {
+    int node0, node1;
+    double stiffness, damping;
+    std::size_t first_edge, edge_count;  // into edges; 0 count for a diagonal
+  };
+  std::vector<SpringRecord> springs;
+  for (std::size_t e = 0; e < edges.size();) {
+    SpringRecord spring{edges[e].node0, edges[e].node1, 0.0, 0.0, e, 0};
+    for (; e < edges.size() && edges[e].node0 == spring.node0 && edges[e].node1 == spring.node1; ++e) {
+      spring.stiffness += edges[e].stiffness;
+      spring.damping += edges[e].damping;
+      ++spring.edge_count;
+    }
+    springs.push_back(spring);
+  }
+  for (int c = 0; c < num_cells; ++c) {
+    const CellCalibration& calibration = calibrations[model.cell_material[c]];
+    const Material& material = desc.materials[model.cell_material[c]];
+    for (int corner = 0; corner < 4; ++corner) {
+      const int a = model.cell_nodes[c][corner];
+      const int b = model.cell_nodes[c][7 - corner];
+      springs.push_back({std::min(a, b), std::max(a, b), calibration.diagonal_stiffness,
+                         material.stiffness_damping * calibration.diagonal_stiffness, 0, 0});
+    }
+  }
+  std::sort(springs.begin(), springs.end(), [](const SpringRecord& a, const SpringRecord& b) {
+    return a.node0 != b.node0 ? a.node0 < b.node0 : a.node1 < b.node1;
+  });
+
+  const int num_springs = static_cast<int>(springs.size());
+  model.spring_nodes.resize(num_springs);
+  model.spring_rest_length.resize(num_springs);
+  model.spring_stiffness.resize(num_springs);
+  model.spring_damping.resize(num_springs);
+  model.spring_cell_offset.assign(num_springs + 1, 0);
+  std::vector<int> edge_slot(static_cast<std::size_t>(num_cells) * 3, 0);  // next free edge per cell axis
+  for (int s = 0; s < num_springs; ++s) {
+    const SpringRecord& spring = springs[s];
+    model.spring_nodes[s] = {spring.node0, spring.node1};
+    model.spring_rest_length[s] =
+        (model.rest_positions.col(spring.node1) - model.rest_positions.col(spring.node0)).norm();
+    model.spring_stiffness[s] = spring.stiffness;
+    model.spring_damping[s] = spring.damping;
+    for (std::size_t e = spring.first_edge; e < spring.first_edge + spring.edge_count; ++e) {
+      const EdgeRecord& edge = edges[e];
+      model.spring_cell_axis.push_back(edge.cell * 3 + edge.axis);
+      int& slot = edge_slot[edge.cell * 3 + edge.axis];
+      model.cell_edges[edge.cell][edge.axis * kEdgesPerAxis + slot++] = s;
+    }
+    model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_axis.size());
+  }
+
+  // node -> spring incidence in ascending spring order (the order of a sequential scatter)
+  model.node_spring_offset.assign(num_nodes + 1, 0);
+  for (const auto& ends : model.spring_nodes) {
+    ++model.node_spring_offset[ends[0] + 1];
+    ++model.node_spring_offset[ends[1] + 1];
+  }
+  for (int n = 0; n < num_nodes; ++n) model.node_spring_offset[n + 1] += model.node_spring_offset[n];
+  model.node_spring.resize(model.node_spring_offset.back());
+  std::vector<int> fill(model.node_spring_offset.begin(), model.node_spring_offset.end() - 1);
+  for (int s = 0; s < num_springs; ++s) {
+    model.node_spring[fill[model.spring_nodes[s][0]]++] = 2 * s;
+    model.node_spring[fill[model.spring_nodes[s][1]]++] = 2 * s + 1;
+  }
+  return model;
+}
+
+}  // namespace cubespring

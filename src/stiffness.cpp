@@ -1,0 +1,183 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Hessian of the elastic energy (docs/model-baudet2007.md section 6):
+//   spring s:   k n n^T + (t / l)(I - n n^T), t the total tension including the correction;
+//   correction: V0 sum_ab D_ab g_a g_b^T with g_a = d(eps_a)/dx;
+//   inversion:  k_inv / V0 grad V grad V^T + k_inv (V / V0 - phi) hess V, for crushed cells.
+#include "cubespring/stiffness.h"
+
+#include <algorithm>
+
+#include <Eigen/Eigenvalues>
+
+#include "cell_geometry.h"
+#include "cubespring/forces.h"
+#include "force_passes.h"
+
+namespace cubespring {
+namespace {
+
+Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
+Eigen::Matrix3d positive_part(const Eigen::Matrix3d& m) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(m);
+  const Eigen::Vector3d values = solver.eigenvalues().cwiseMax(0.0);
+  return solver.eigenvectors() * values.asDiagonal() * solver.eigenvectors().transpose();
+}
+
+int position_in(const std::vector<int>& sorted, int value) {
+  return static_cast<int>(std::lower_bound(sorted.begin(), sorted.end(), value) - sorted.begin());
+}
+
+}  // namespace
+
+StiffnessAssembler::StiffnessAssembler(const Model& model) {
+  const int num_nodes = model.num_nodes();
+  // neighbours: the node itself, the other end of each spring, every node that shares a cell
+  std::vector<std::vector<int>> neighbours(num_nodes);
+  for (int n = 0; n < num_nodes; ++n) neighbours[n].push_back(n);
+  for (const auto& ends : model.spring_nodes) {
+    neighbours[ends[0]].push_back(ends[1]);
+    neighbours[ends[1]].push_back(ends[0]);
+  }
+  for (const auto& corners : model.cell_nodes) {
+    for (int p : corners) neighbours[p].insert(neighbours[p].end(), corners.begin(), corners.end());
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int n = 0; n < num_nodes; ++n) {
+    auto& list = neighbours[n];
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+    for (int m : list) {
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) triplets.emplace_back(3 * n + a, 3 * m + b, 1.0);
+      }
+    }
+  }
+  pattern_.resize(3 * num_nodes, 3 * num_nodes);
+  pattern_.setFromTriplets(triplets.begin(), triplets.end());
+  pattern_.makeCompressed();
+  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+
+  diagonal_position_.resize(num_nodes);
+  for (int n = 0; n < num_nodes; ++n) diagonal_position_[n] = position_in(neighbours[n], n);
+  spring_position_.resize(model.num_springs());
+  for (int s = 0; s < model.num_springs(); ++s) {
+    const int i = model.spring_nodes[s][0];
+    const int j = model.spring_nodes[s][1];
+    spring_position_[s] = {position_in(neighbours[i], j), position_in(neighbours[j], i)};
+  }
+  positive_correction_.resize(model.num_cells());
+  for (int c = 0; c < model.num_cells(); ++c) positive_correction_[c] = positive_part(model.cell_correction[c]);
+  cell_position_.resize(model.num_cells());
+  for (int c = 0; c < model.num_cells(); ++c) {
+    for (int p = 0; p < kCornersPerCell; ++p) {
+      for (int q = 0; q < kCornersPerCell; ++q) {
+        cell_position_[c][p * kCornersPerCell + q] =
+            position_in(neighbours[model.cell_nodes[c][p]], model.cell_nodes[c][q]);
+      }
+    }
+  }
+}
+
+void StiffnessAssembler::add_block(SparseMatrix& matrix, int row_node, int position,
+                                   const Eigen::Matrix3d& block) const {
+  const int* outer = matrix.outerIndexPtr();
+  double* values = matrix.valuePtr();
+  for (int a = 0; a < 3; ++a) {
+    double* row = values + outer[3 * row_node + a] + 3 * position;
+    for (int b = 0; b < 3; ++b) row[b] += block(a, b);
+  }
+}
+
+void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
+                                  double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
+  if (matrix.nonZeros() != pattern_.nonZeros() || matrix.rows() != pattern_.rows()) {
+    matrix = pattern_;
+  } else {
+    std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
+  }
+  const bool exact = kind == StiffnessKind::kExact;
+  ForceWorkspace ws;
+  measure_tensions(model, x, ws);
+
+  // springs: material and geometric parts
+  for (int s = 0; s < model.num_springs(); ++s) {
+    const double length = ws.spring_length[s];
+    if (length <= 0.0) continue;
+    const int i = model.spring_nodes[s][0];
+    const int j = model.spring_nodes[s][1];
+    const Eigen::Vector3d n = (x.col(j) - x.col(i)) / length;
+    const Eigen::Matrix3d nn = n * n.transpose();
+    const double tension = exact ? ws.spring_tension[s] : std::max(ws.spring_tension[s], 0.0);
+    const Eigen::Matrix3d block =
+        (stiffness_scale * model.spring_stiffness[s] + damping_scale * model.spring_damping[s]) * nn +
+        (stiffness_scale * tension / length) * (Eigen::Matrix3d::Identity() - nn);
+    add_block(matrix, i, diagonal_position_[i], block);
+    add_block(matrix, j, diagonal_position_[j], block);
+    add_block(matrix, i, spring_position_[s][0], -block);
+    add_block(matrix, j, spring_position_[s][1], -block);
+  }
+
+  // cells: correction material part and inversion recovery
+  const double rest_volume = model.rest_cell_volume();
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const Eigen::Matrix3d& d = exact ? model.cell_correction[c] : positive_correction_[c];
+    const double beta = model.materials[model.cell_material[c]].stiffness_damping;
+    const Eigen::Matrix3d weighted = rest_volume * (stiffness_scale + damping_scale * beta) * d;
+    // strain_gradient[p] column a = d(eps_a)/d(x_p)
+    std::array<Eigen::Matrix3d, kCornersPerCell> strain_gradient;
+    for (int p = 0; p < kCornersPerCell; ++p) {
+      for (int axis = 0; axis < 3; ++axis) {
+        const int low = p & ~(1 << axis);
+        const Eigen::Vector3d edge = x.col(model.cell_nodes[c][low | (1 << axis)]) - x.col(model.cell_nodes[c][low]);
+        const double length = edge.norm();
+        strain_gradient[p].col(axis) = length > 0.0
+            ? Eigen::Vector3d(corner_side(p, axis) * edge / (length * kEdgesPerAxis * model.cell_size[axis]))
+            : Eigen::Vector3d::Zero();
+      }
+    }
+    for (int p = 0; p < kCornersPerCell; ++p) {
+      const Eigen::Matrix3d left = strain_gradient[p] * weighted;
+      for (int q = 0; q < kCornersPerCell; ++q) {
+        add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q],
+                  left * strain_gradient[q].transpose());
+      }
+    }
+
+    const CellFrame frame = cell_frame(model, x, c);
+    const double ratio = frame.volume() / rest_volume;
+    if (ratio >= kCrushedVolumeFraction) continue;
+    const double k_inv = stiffness_scale * model.cell_inversion_stiffness[c];
+    const auto gradient = frame.volume_gradient();
+    // second derivatives of V = a . (b x c) with respect to the mean edge vectors
+    std::array<std::array<Eigen::Matrix3d, 3>, 3> hess;
+    hess[0][0] = hess[1][1] = hess[2][2] = Eigen::Matrix3d::Zero();
+    hess[0][1] = -cross_matrix(frame.edge[2]);
+    hess[0][2] = cross_matrix(frame.edge[1]);
+    hess[1][2] = -cross_matrix(frame.edge[0]);
+    hess[1][0] = hess[0][1].transpose();
+    hess[2][0] = hess[0][2].transpose();
+    hess[2][1] = hess[1][2].transpose();
+    const double curvature_scale = exact ? k_inv * (ratio - kCrushedVolumeFraction) : 0.0;
+    for (int p = 0; p < kCornersPerCell; ++p) {
+      for (int q = 0; q < kCornersPerCell; ++q) {
+        Eigen::Matrix3d block = (k_inv / rest_volume) * gradient[p] * gradient[q].transpose();
+        if (curvature_scale != 0.0) {
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              block += curvature_scale * corner_side(p, a) * corner_side(q, b) / 16.0 * hess[a][b];
+            }
+          }
+        }
+        add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+      }
+    }
+  }
+}
+
+}  // namespace cubespring

@@ -1,0 +1,205 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The paper's virtual experiments against the continuum moduli (model notes section 8, 3-6, 10, 12).
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "cubespring/experiments.h"
+#include "cubespring/static_solver.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+// Runs an experiment; a failed run fails the test and stops it (the result would be empty).
+ExperimentResult run(Experiment experiment, const ExperimentSettings& settings) {
+  Result<ExperimentResult> result = run_experiment(experiment, settings);
+  if (!result.ok()) {
+    ADD_FAILURE() << experiment_name(experiment) << ": " << result.message();
+    throw std::runtime_error(result.message());
+  }
+  return std::move(result).value();
+}
+
+ExperimentSettings cube(double nu, const Eigen::Vector3i& cells = {1, 1, 1}) {
+  ExperimentSettings s;
+  s.material = test::notes_material(nu);
+  s.cells = cells;
+  return s;
+}
+
+class SingleCube : public ::testing::TestWithParam<double> {};
+
+TEST_P(SingleCube, ElongationGivesYoungsModulusAndPoissonRatio) {
+  const ExperimentResult r = run(Experiment::kElongation, cube(GetParam()));
+  EXPECT_NEAR(*r.error.young_modulus, 0.0, 1e-3);
+  EXPECT_NEAR(*r.error.poisson_ratio, 0.0, 1e-3);
+}
+
+TEST_P(SingleCube, InflationGivesBulkModulus) {
+  const ExperimentResult r = run(Experiment::kInflation, cube(GetParam()));
+  EXPECT_NEAR(*r.error.bulk_modulus, 0.0, 1e-3);
+}
+
+TEST_P(SingleCube, AffineShearGivesShearModulusExactly) {
+  ExperimentSettings s = cube(GetParam());
+  s.strain = 1e-8;  // geometric nonlinearity ~ strain
+  const ExperimentResult r = run(Experiment::kShear, s);
+  EXPECT_NEAR(*r.error.shear_modulus, 0.0, 1e-7);
+  for (int plane = 0; plane < 3; ++plane) EXPECT_NEAR((*r.shear_moduli)[plane] / shear_modulus(s.material), 1.0, 1e-7);
+}
+
+TEST_P(SingleCube, ForceControlledShearShowsTheFreeCornerSoftening) {
+  // a free cube under pure-shear tractions: G / G0 = (1 + 4 nu) / (2 + 4 nu) (model notes 4.2)
+  ExperimentSettings s = cube(GetParam());
+  s.shear_control = ShearControl::kForce;
+  const double nu = GetParam();
+  const ExperimentResult r = run(Experiment::kShear, s);
+  EXPECT_NEAR(*r.measured.shear_modulus / shear_modulus(s.material), (1 + 4 * nu) / (2 + 4 * nu), 1e-3);
+}
+
+INSTANTIATE_TEST_SUITE_P(PoissonRatios, SingleCube, ::testing::Values(0.0, 0.1, 0.3, 0.45, 0.49));
+
+TEST(Experiments, SpringsAloneMissTheModuliAsTheNotesPredict) {
+  // regression on the calibration: without the correction E/E0 = 2(4nu+1)/(4nu+3), nu = 1/(3+4nu)
+  const double nu = 0.3;
+  ExperimentSettings s = cube(nu);
+  LatticeDesc desc = box_lattice(s.cells, s.cell_size, s.material);
+  Result<Model> model = build_model(desc);
+  ASSERT_TRUE(model.ok());
+  for (auto& d : model->cell_correction) d.setZero();
+  // uniaxial load of the paper's experiment, by hand on the springs-only model
+  Loads loads;
+  loads.nodal_forces = Eigen::Matrix3Xd::Zero(3, model->num_nodes());
+  const double stress = 1e5 * 1e-4;
+  for (int n = 0; n < model->num_nodes(); ++n) {
+    loads.nodal_forces(0, n) = (model->node_grid_index[n].x() == 1 ? 1 : -1) * stress * 1e-4 / 4;
+  }
+  State state = rest_state(*model);
+  ASSERT_TRUE(solve_static(*model, Constraints(*model), loads, StaticSettings{}, state).converged);
+  const Eigen::Matrix3Xd u = displacements(*model, state);
+  double axial = 0, lateral = 0;
+  for (int n = 0; n < model->num_nodes(); ++n) {
+    axial += (model->node_grid_index[n].x() == 1 ? 1 : -1) * u(0, n) / 4 / 0.01;
+    lateral += (model->node_grid_index[n].y() == 1 ? 1 : -1) * u(1, n) / 4 / 0.01;
+  }
+  EXPECT_NEAR(stress / axial / 1e5, 2 * (4 * nu + 1) / (4 * nu + 3), 1e-3);
+  EXPECT_NEAR(-lateral / axial, 1 / (3 + 4 * nu), 1e-3);
+}
+
+TEST(Experiments, LargerBlocksKeepTheModuli) {
+  for (double nu : {0.3, 0.49}) {
+    const ExperimentResult e = run(Experiment::kElongation, cube(nu, {4, 4, 4}));
+    EXPECT_NEAR(*e.error.young_modulus, 0.0, 1e-3) << nu;
+    EXPECT_NEAR(*e.error.poisson_ratio, 0.0, 1e-3) << nu;
+    const ExperimentResult b = run(Experiment::kInflation, cube(nu, {4, 4, 4}));
+    EXPECT_NEAR(*b.error.bulk_modulus, 0.0, 1e-3) << nu;
+  }
+}
+
+TEST(Experiments, NonCubicCellsKeepEAndNuAndReportThreeShearModuli) {
+  ExperimentSettings s = cube(0.3, {3, 5, 8});
+  s.cell_size = {0.01, 0.011, 0.0125};
+  const ExperimentResult e = run(Experiment::kElongation, s);
+  EXPECT_NEAR(*e.error.young_modulus, 0.0, 1e-3);
+  EXPECT_NEAR(*e.error.poisson_ratio, 0.0, 1e-3);
+  const ExperimentResult b = run(Experiment::kInflation, s);
+  EXPECT_NEAR(*b.error.bulk_modulus, 0.0, 1e-3);
+  // displacement-controlled shear in each plane: C_abab = 4 k_d a b / (L_d^2 c), computed here
+  s.strain = 1e-6;
+  const ExperimentResult g = run(Experiment::kShear, s);
+  const Eigen::Vector3d& h = s.cell_size;
+  const double ld2 = h.squaredNorm();
+  const double kd = 3 * shear_modulus(s.material) * ld2 * h.prod() /
+                    (4 * (h.x() * h.x() * h.y() * h.y() + h.y() * h.y() * h.z() * h.z() + h.z() * h.z() * h.x() * h.x()));
+  const Eigen::Vector3d expected(4 * kd * h.y() * h.z() / (ld2 * h.x()), 4 * kd * h.z() * h.x() / (ld2 * h.y()),
+                                 4 * kd * h.x() * h.y() / (ld2 * h.z()));
+  for (int plane = 0; plane < 3; ++plane) {
+    EXPECT_NEAR((*g.shear_moduli)[plane] / expected[plane], 1.0, 1e-5) << plane;
+    EXPECT_NEAR((*g.expected_shear_moduli)[plane] / expected[plane], 1.0, 1e-12) << plane;
+  }
+  EXPECT_NEAR(expected.mean() / shear_modulus(s.material), 1.0, 1e-12);  // mean shear modulus is G
+}
+
+TEST(Experiments, LongAxisElongationOfParallelepipedCells) {
+  ExperimentSettings s = cube(0.3);
+  s.cell_size = {0.0125, 0.01, 0.01};
+  const ExperimentResult e = run(Experiment::kElongation, s);
+  EXPECT_NEAR(*e.error.young_modulus, 0.0, 1e-3);
+  EXPECT_NEAR(*e.error.poisson_ratio, 0.0, 1e-3);
+}
+
+TEST(Experiments, TwoMaterialsInSeriesStretchAsTheSumOfTheirParts) {
+  // a 4x1x1 bar, soft half and stiff half, pulled at its ends: elongation = sum L_i sigma / E_i
+  LatticeDesc desc = box_lattice({4, 1, 1}, Eigen::Vector3d::Constant(0.01), test::notes_material(0.0));
+  Material stiff = test::notes_material(0.0);
+  stiff.young_modulus = 3e5;
+  desc.materials.push_back(stiff);
+  desc.cell_material = {0, 0, 1, 1};
+  Result<Model> model = build_model(desc);
+  ASSERT_TRUE(model.ok());
+  Loads loads;
+  loads.nodal_forces = Eigen::Matrix3Xd::Zero(3, model->num_nodes());
+  const double stress = 10.0;
+  for (int n = 0; n < model->num_nodes(); ++n) {
+    const int i = model->node_grid_index[n].x();
+    if (i == 0 || i == 4) loads.nodal_forces(0, n) = (i == 4 ? 1 : -1) * stress * 1e-4 / 4;
+  }
+  State state = rest_state(*model);
+  ASSERT_TRUE(solve_static(*model, Constraints(*model), loads, StaticSettings{}, state).converged);
+  const Eigen::Matrix3Xd u = displacements(*model, state);
+  double elongation = 0;
+  for (int n = 0; n < model->num_nodes(); ++n) {
+    const int i = model->node_grid_index[n].x();
+    if (i == 0 || i == 4) elongation += (i == 4 ? 1 : -1) * u(0, n) / 4;
+  }
+  const double expected = 0.02 * stress / 1e5 + 0.02 * stress / 3e5;
+  EXPECT_NEAR(elongation / expected, 1.0, 1e-3);
+}
+
+TEST(Experiments, CantileverMatchesTheNotesTable) {
+  // model notes section 7, linear: g scaled down by 1e3 and the deflection scaled back [mm]
+  const std::vector<std::pair<double, double>> table = {{0.0, 6.127}, {0.25, 5.748}, {0.3, 5.649},
+                                                        {0.4, 5.408}, {0.45, 5.255}, {0.49, 5.110}};
+  for (const auto& [nu, tip_mm] : table) {
+    ExperimentSettings s;
+    s.material.young_modulus = 1e6;
+    s.material.poisson_ratio = nu;
+    s.cells = {16, 4, 4};
+    s.gravity = 9.81e-3;
+    const ExperimentResult r = run(Experiment::kCantilever, s);
+    EXPECT_NEAR(-*r.tip_deflection * 1e6 / tip_mm, 1.0, 5e-3) << "nu " << nu;
+    EXPECT_LT(*r.timoshenko, *r.euler_bernoulli);  // shear adds sag
+  }
+}
+
+TEST(Experiments, SoftCantileverSagsFarAndStaysInEquilibrium) {
+  ExperimentSettings s;
+  s.material.young_modulus = 1e5;
+  s.cells = {16, 4, 4};
+  const ExperimentResult r = run(Experiment::kCantilever, s);
+  // about a third of the beam's length; less than linear theory (the beam shortens as it bends)
+  EXPECT_LT(*r.tip_deflection, -0.04);
+  EXPECT_GT(*r.tip_deflection, 10 * -5.649e-3 * 1.0);
+}
+
+TEST(Experiments, RejectBadSettings) {
+  ExperimentSettings s = cube(0.3);
+  s.cells = {0, 1, 1};
+  Result<ExperimentResult> r = run_experiment(Experiment::kElongation, s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("cells"), std::string::npos);
+  s = cube(0.3);
+  s.material.poisson_ratio = 0.5;
+  r = run_experiment(Experiment::kElongation, s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("poisson_ratio"), std::string::npos);
+  Result<Experiment> unknown = parse_experiment("twist");
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.message().find("twist"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace cubespring

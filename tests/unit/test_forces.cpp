@@ -1,0 +1,142 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Forces: equilibrium at rest, energy gradient, invariance, balance, the correction's size and sign.
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "cubespring/forces.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+using test::elastic_forces;
+using test::notes_material;
+
+TEST(Forces, RestStateIsInEquilibrium) {
+  const Model model = test::box_model({3, 2, 2}, notes_material(0.45));
+  EXPECT_LT(elastic_forces(model, model.rest_positions).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_NEAR(elastic_energy(model, model.rest_positions), 0.0, 1e-20);
+}
+
+TEST(Forces, AreMinusTheEnergyGradient) {
+  for (double nu : {0.0, 0.3, 0.49}) {
+    const Model model = test::box_model({2, 2, 1}, notes_material(nu));
+    const Eigen::Matrix3Xd x = test::perturbed(model, 1e-3);
+    const Eigen::Matrix3Xd f = elastic_forces(model, x);
+    const double step = 1e-7;
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+      Eigen::Matrix3Xd plus = x, minus = x;
+      plus.data()[i] += step;
+      minus.data()[i] -= step;
+      const double derivative = (elastic_energy(model, plus) - elastic_energy(model, minus)) / (2 * step);
+      worst = std::max(worst, std::abs(derivative + f.data()[i]));
+    }
+    EXPECT_LT(worst, 1e-6 * f.cwiseAbs().maxCoeff()) << "nu " << nu;
+  }
+}
+
+TEST(Forces, CrushedCellRecoveryIsAnEnergyGradient) {
+  const Model model = test::box_model({1, 1, 1}, notes_material(0.3));
+  Eigen::Matrix3Xd x = model.rest_positions;
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    if (model.node_grid_index[n].z() == 1) x(2, n) -= 0.015;  // top face through the bottom one
+  }
+  x = x + test::perturbed(model, 5e-4) - model.rest_positions;
+  ASSERT_LT(cell_signed_volume(model, x, 0), 0.0);
+  const Eigen::Matrix3Xd f = elastic_forces(model, x);
+  const double step = 1e-8;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::Matrix3Xd plus = x, minus = x;
+    plus.data()[i] += step;
+    minus.data()[i] -= step;
+    const double derivative = (elastic_energy(model, plus) - elastic_energy(model, minus)) / (2 * step);
+    EXPECT_NEAR(-derivative, f.data()[i], 1e-6 * f.cwiseAbs().maxCoeff()) << i;
+  }
+  // the recovery pushes the top face back up
+  double top_force = 0.0;
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    if (model.node_grid_index[n].z() == 1) top_force += f(2, n);
+  }
+  EXPECT_GT(top_force, 0.0);
+}
+
+TEST(Forces, RigidRotationGivesNoForce) {
+  const Model model = test::box_model({2, 2, 2}, notes_material(0.45));
+  const Eigen::Matrix3d rotation =
+      Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d(0.3, -0.5, 0.8).normalized()).toRotationMatrix();
+  const Eigen::Matrix3Xd x = (rotation * model.rest_positions).colwise() + Eigen::Vector3d(0.1, 0.2, -0.3);
+  const double scale = 1e5 * 0.01 * 0.01;  // E h^2
+  EXPECT_LT(elastic_forces(model, x).cwiseAbs().maxCoeff(), 1e-10 * scale);
+}
+
+TEST(Forces, RotateWithTheBody) {
+  const Model model = test::box_model({2, 1, 1}, notes_material(0.3));
+  const Eigen::Matrix3Xd x = test::perturbed(model, 1e-3);
+  const Eigen::Matrix3d rotation = Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Matrix3Xd rotated_forces = elastic_forces(model, rotation * x);
+  const Eigen::Matrix3Xd forces = elastic_forces(model, x);
+  EXPECT_LT((rotated_forces - rotation * forces).cwiseAbs().maxCoeff(), 1e-9 * forces.cwiseAbs().maxCoeff());
+}
+
+TEST(Forces, NetForceAndTorqueVanish) {
+  const Model model = test::box_model({3, 2, 1}, notes_material(0.4));
+  const Eigen::Matrix3Xd x = test::perturbed(model, 2e-3);
+  const Eigen::Matrix3Xd f = elastic_forces(model, x);
+  Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+  for (int n = 0; n < model.num_nodes(); ++n) torque += Eigen::Vector3d(x.col(n)).cross(Eigen::Vector3d(f.col(n)));
+  const double scale = f.cwiseAbs().maxCoeff();
+  EXPECT_LT(f.rowwise().sum().cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_LT(torque.cwiseAbs().maxCoeff(), 1e-12 * scale * 0.03);
+}
+
+TEST(Forces, CorrectionSizeAndSignUnderUniaxialStress) {
+  // lateral correction force per node / axial force per node = (1 - 4 nu) / 2, outward positive
+  for (double nu : {0.0, 0.3, 0.45}) {
+    const Model model = test::box_model({1, 1, 1}, notes_material(nu));
+    Model springs_only = model;
+    for (auto& d : springs_only.cell_correction) d.setZero();
+    const double eps = 1e-7;
+    const Eigen::Vector3d strain(eps, -nu * eps, -nu * eps);
+    const Eigen::Matrix3Xd x = model.rest_positions + strain.asDiagonal() * model.rest_positions;
+    const Eigen::Matrix3Xd correction = elastic_forces(model, x) - elastic_forces(springs_only, x);
+    const double axial_per_node = 1e5 * eps * 1e-4 / 4;
+    for (int n = 0; n < model.num_nodes(); ++n) {
+      const double outward = model.node_grid_index[n].y() == 1 ? 1.0 : -1.0;
+      EXPECT_NEAR(outward * correction(1, n) / axial_per_node, (1 - 4 * nu) / 2, 1e-5) << nu;
+    }
+    // and the total lateral force vanishes: the lateral faces are free
+    const Eigen::Matrix3Xd total = elastic_forces(model, x);
+    EXPECT_LT(total.row(1).cwiseAbs().maxCoeff(), 1e-5 * axial_per_node);
+  }
+}
+
+TEST(Forces, ThreadCountDoesNotChangeABit) {
+  const Model model = test::box_model({12, 10, 8}, notes_material(0.3));  // enough springs for 2 threads
+  State state = rest_state(model);
+  state.positions = test::perturbed(model, 1e-3);
+  state.velocities = test::perturbed(model, 0.1) - model.rest_positions;
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  ForceWorkspace ws;
+  Eigen::Matrix3Xd one, two;
+  compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+  compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
+}
+
+TEST(Forces, GravityPullsEveryMass) {
+  const Model model = test::box_model({2, 2, 2}, notes_material(0.3));
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  ForceWorkspace ws;
+  Eigen::Matrix3Xd f;
+  compute_forces(model, rest_state(model), loads, ForceOptions{}, ws, f);
+  EXPECT_NEAR(f.row(2).sum(), -9.81 * model.total_mass(), 1e-12);
+}
+
+}  // namespace
+}  // namespace cubespring

@@ -1,0 +1,240 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Time integration against analytic periods, conservation laws, stability limits and static
+// equilibria.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "cubespring/constraints.h"
+#include "cubespring/experiments.h"
+#include "cubespring/integrator.h"
+#include "cubespring/static_solver.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+// Two masses joined by one spring along x, built by hand.
+Model single_spring(double m0, double m1, double k) {
+  Model model;
+  model.materials = {Material{}};
+  model.cell_size = Eigen::Vector3d::Constant(0.01);
+  model.rest_positions = Eigen::Matrix3Xd::Zero(3, 2);
+  model.rest_positions(0, 1) = 0.01;
+  model.node_grid_index = {{0, 0, 0}, {1, 0, 0}};
+  model.mass = Eigen::Vector2d(m0, m1);
+  model.mass_damping = Eigen::Vector2d::Zero();
+  model.spring_nodes = {{0, 1}};
+  model.spring_rest_length = {0.01};
+  model.spring_stiffness = {k};
+  model.spring_damping = {0.0};
+  model.spring_cell_offset = {0, 0};
+  model.node_spring_offset = {0, 1, 2};
+  model.node_spring = {0, 1};
+  return model;
+}
+
+class SingleSpring : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(SingleSpring, OscillatesAtTheAnalyticPeriod) {
+  const double m0 = 0.002, m1 = 0.003, k = 50.0;
+  const Model model = single_spring(m0, m1, k);
+  const double period = 2 * M_PI * std::sqrt(m0 * m1 / (m0 + m1) / k);
+  State state = rest_state(model);
+  state.positions(0, 1) += 1e-4;
+  StepSettings settings;
+  settings.integrator = GetParam();
+  settings.time_step = period / 2000;
+  Stepper stepper(model);
+  // time the upward zero crossings of the extension over three periods
+  std::vector<double> crossings;
+  double previous = 1e-4;
+  while (state.time < 3.2 * period) {
+    ASSERT_TRUE(stepper.step(model, Constraints(model), Loads{}, settings, state).ok());
+    const double extension = state.positions(0, 1) - state.positions(0, 0) - 0.01;
+    if (previous < 0 && extension >= 0) {
+      crossings.push_back(state.time - settings.time_step * extension / (extension - previous));
+    }
+    previous = extension;
+  }
+  ASSERT_GE(crossings.size(), 2u);
+  const double measured = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
+  const double tolerance = GetParam() == Integrator::kImplicitEuler ? 1e-3 : 1e-5;
+  EXPECT_NEAR(measured / period, 1.0, tolerance) << integrator_name(GetParam());
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, SingleSpring,
+                         ::testing::Values(Integrator::kSymplecticEuler, Integrator::kVelocityVerlet,
+                                           Integrator::kImplicitEuler));
+
+State wobbling_block(const Model& model) {
+  State state = rest_state(model);
+  state.positions = test::perturbed(model, 2e-4, 11);
+  state.velocities = (test::perturbed(model, 0.05, 12) - model.rest_positions);
+  return state;
+}
+
+TEST(Integrator, ConservesLinearMomentumWithoutExternalForce) {
+  Material m = test::notes_material(0.3);
+  m.stiffness_damping = 1e-4;  // internal damping exchanges no momentum
+  const Model model = test::box_model({3, 3, 3}, m);
+  for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet, Integrator::kImplicitEuler}) {
+    State state = wobbling_block(model);
+    const Eigen::Vector3d momentum = state.velocities * model.mass;
+    StepSettings settings;
+    settings.integrator = integrator;
+    settings.time_step = 0.5 * max_stable_time_step(model);
+    settings.solver_tolerance = 1e-12;
+    Stepper stepper(model);
+    for (int i = 0; i < 300; ++i) ASSERT_TRUE(stepper.step(model, Constraints(model), Loads{}, settings, state).ok());
+    const Eigen::Vector3d after = state.velocities * model.mass;
+    EXPECT_LT((after - momentum).norm(), 1e-8 * model.total_mass() * 0.05) << integrator_name(integrator);
+  }
+}
+
+TEST(Integrator, UndampedExplicitEnergyStaysBounded) {
+  const Model model = test::box_model({3, 2, 2}, test::notes_material(0.3));
+  for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet}) {
+    State state = wobbling_block(model);
+    const auto energy = [&](const State& s) { return kinetic_energy(model, s) + elastic_energy(model, s.positions); };
+    const double start = energy(state);
+    StepSettings settings;
+    settings.integrator = integrator;
+    settings.time_step = 0.2 * max_stable_time_step(model);
+    Stepper stepper(model);
+    double low = start, high = start;
+    for (int i = 0; i < 20000; ++i) {
+      ASSERT_TRUE(stepper.step(model, Constraints(model), Loads{}, settings, state).ok());
+      low = std::min(low, energy(state));
+      high = std::max(high, energy(state));
+    }
+    EXPECT_LT(high / start, 1.1) << integrator_name(integrator);
+    EXPECT_GT(low / start, 0.9) << integrator_name(integrator);
+  }
+}
+
+TEST(Integrator, StableTimeStepSeparatesStableFromUnstable) {
+  Material m;  // E = 1 MPa
+  const Model model = test::box_model({4, 2, 2}, m);
+  const double limit = max_stable_time_step(model);
+  // a wave crossing one cell: h / c, the order the bound must have
+  EXPECT_GT(limit, 0.1 * 0.01 / pressure_wave_speed(m));
+  EXPECT_LT(limit, 2.0 * 0.01 / pressure_wave_speed(m));
+  for (const auto& [factor, stable] : {std::pair{1.0, true}, std::pair{4.0, false}}) {
+    State state = wobbling_block(model);
+    StepSettings settings;
+    settings.time_step = factor * limit;
+    Stepper stepper(model);
+    StepReport report;
+    for (int i = 0; i < 3000 && report.ok(); ++i) report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+    EXPECT_EQ(report.ok(), stable) << factor << " x " << limit << ": " << report.message;
+    EXPECT_TRUE(state.positions.allFinite());
+  }
+}
+
+TEST(Integrator, ImplicitEulerIsStableWhereExplicitBlowsUp) {
+  // E = 1 MPa, 1 cm cells, dt = 10 ms: far above the explicit limit (about 3e-4 s)
+  Material m;
+  m.mass_damping = 1.0;
+  const Model model = test::box_model({16, 4, 4}, m);
+  Constraints clamp(model);
+  ASSERT_TRUE(clamp.fix_box(model, {-1e-9, -1, -1}, {1e-9, 1, 1}).ok());
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  StepSettings settings;
+  settings.time_step = 0.01;
+
+  State explicit_state = rest_state(model);
+  Stepper explicit_stepper(model);
+  StepReport report;
+  for (int i = 0; i < 100 && report.ok(); ++i) report = explicit_stepper.step(model, clamp, loads, settings, explicit_state);
+  EXPECT_EQ(report.status, StepStatus::kUnstable);
+  EXPECT_NE(report.message.find("unstable"), std::string::npos);
+  EXPECT_TRUE(explicit_state.positions.allFinite());
+
+  settings.integrator = Integrator::kImplicitEuler;
+  State state = rest_state(model);
+  Stepper stepper(model);
+  for (int i = 0; i < 150; ++i) ASSERT_TRUE(stepper.step(model, clamp, loads, settings, state).ok()) << i;
+  // it settles at the static equilibrium
+  State equilibrium = rest_state(model);
+  ASSERT_TRUE(solve_static(model, clamp, loads, StaticSettings{}, equilibrium).converged);
+  const double tip = displacements(model, equilibrium).row(2).minCoeff();
+  EXPECT_NEAR(displacements(model, state).row(2).minCoeff() / tip, 1.0, 0.02);
+}
+
+TEST(Integrator, SameRunTwiceIsBitIdenticalOnOneAndTwoThreads) {
+  Material m = test::notes_material(0.3);
+  m.stiffness_damping = 1e-4;
+  const Model model = test::box_model({12, 10, 8}, m);  // enough springs for 2 threads
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kImplicitEuler}) {
+    std::vector<State> runs;
+    for (int threads : {1, 1, 2, 2}) {
+      State state = wobbling_block(model);
+      StepSettings settings;
+      settings.integrator = integrator;
+      settings.threads = threads;
+      settings.time_step = integrator == Integrator::kImplicitEuler ? 1e-3 : 0.5 * max_stable_time_step(model);
+      Stepper stepper(model);
+      for (int i = 0; i < 30; ++i) ASSERT_TRUE(stepper.step(model, Constraints(model), loads, settings, state).ok());
+      runs.push_back(state);
+    }
+    for (const State& run : runs) EXPECT_TRUE(run == runs[0]) << integrator_name(integrator);
+  }
+}
+
+TEST(Integrator, CrushedCornerCellRecovers) {
+  // a corner cell's top face pushed 1.5 cells down, through its bottom face, then released
+  Material m = test::notes_material(0.3);
+  m.mass_damping = 30.0;
+  const Model model = test::box_model({3, 3, 3}, m);
+  Constraints clamp(model);
+  ASSERT_TRUE(clamp.fix_box(model, {-1, -1, -1e-9}, {1, 1, 1e-9}).ok());
+  State state = rest_state(model);
+  int corner_cell = -1;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    if (model.cell_grid_index[c] == Eigen::Vector3i(2, 2, 2)) corner_cell = c;
+  }
+  for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[corner_cell][corner]) -= 0.015;
+  ASSERT_LT(cell_signed_volume(model, state.positions, corner_cell), 0.0);
+  StepSettings settings;
+  settings.integrator = Integrator::kImplicitEuler;
+  settings.time_step = 1e-3;
+  Stepper stepper(model);
+  for (int i = 0; i < 1500; ++i) ASSERT_TRUE(stepper.step(model, clamp, Loads{}, settings, state).ok()) << i;
+  EXPECT_GT(cell_signed_volume(model, state.positions, corner_cell), 0.0);
+  EXPECT_LT((state.positions - model.rest_positions).cwiseAbs().maxCoeff(), 0.01 * 0.01);
+}
+
+TEST(Integrator, RefusesABadTimeStep) {
+  const Model model = test::box_model({1, 1, 1}, Material{});
+  State state = rest_state(model);
+  StepSettings settings;
+  settings.time_step = -1.0;
+  Stepper stepper(model);
+  const StepReport report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+  EXPECT_FALSE(report.ok());
+  EXPECT_NE(report.message.find("time_step"), std::string::npos);
+}
+
+TEST(Integrator, CgFailureIsAStatusNotACrash) {
+  const Model model = test::box_model({4, 4, 4}, Material{});
+  State state = wobbling_block(model);
+  const State before = state;
+  StepSettings settings;
+  settings.integrator = Integrator::kImplicitEuler;
+  settings.time_step = 0.01;
+  settings.solver_max_iterations = 2;
+  settings.solver_tolerance = 1e-14;
+  Stepper stepper(model);
+  const StepReport report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+  EXPECT_EQ(report.status, StepStatus::kSolverFailed);
+  EXPECT_NE(report.message.find("conjugate gradients"), std::string::npos);
+  EXPECT_TRUE(state == before);
+}
+
+}  // namespace
+}  // namespace cubespring

@@ -1,0 +1,103 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include <gtest/gtest.h>
+
+#include "cubespring/model.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+TEST(Model, BoxCounts) {
+  const Model model = test::box_model({3, 2, 4}, Material{});
+  EXPECT_EQ(model.num_nodes(), 4 * 3 * 5);
+  EXPECT_EQ(model.num_cells(), 24);
+  // unique edges along x: 3 * 3 * 5, along y: 4 * 2 * 5, along z: 4 * 3 * 4; plus 4 diagonals per cell
+  EXPECT_EQ(model.num_springs(), 45 + 40 + 48 + 4 * 24);
+}
+
+TEST(Model, MassIsLumpedAnEighthPerCorner) {
+  const Material m = test::notes_material(0.3);
+  const Model model = test::box_model({3, 3, 3}, m);
+  const double cell_mass = m.density * 1e-6;
+  EXPECT_NEAR(model.total_mass(), m.density * 27e-6, 1e-15);
+  EXPECT_NEAR(model.mass[model.node_at({0, 0, 0})], cell_mass / 8, 1e-18);   // corner
+  EXPECT_NEAR(model.mass[model.node_at({1, 1, 1})], cell_mass, 1e-18);       // interior
+  EXPECT_NEAR(model.mass[model.node_at({1, 0, 0})], cell_mass / 4, 1e-18);   // edge
+}
+
+TEST(Model, SharedEdgesSumTheirCellsStiffness) {
+  const Model model = test::box_model({2, 2, 2}, test::notes_material(0.3));
+  const double k_edge = 211.5384615384615;
+  // the x-edge through the block's centre is shared by 4 cells, a boundary edge by 1
+  for (int s = 0; s < model.num_springs(); ++s) {
+    const auto& ends = model.spring_nodes[s];
+    const Eigen::Vector3i a = model.node_grid_index[ends[0]];
+    const Eigen::Vector3i b = model.node_grid_index[ends[1]];
+    if ((b - a) != Eigen::Vector3i(1, 0, 0)) continue;
+    const int cells = (a.y() == 1 ? 2 : 1) * (a.z() == 1 ? 2 : 1);
+    EXPECT_NEAR(model.spring_stiffness[s], cells * k_edge, 1e-9) << a.transpose();
+    EXPECT_EQ(model.spring_cell_offset[s + 1] - model.spring_cell_offset[s], cells);
+  }
+}
+
+TEST(Model, TwoMaterialsKeepTheirOwnStiffness) {
+  LatticeDesc desc = box_lattice({2, 1, 1}, Eigen::Vector3d::Constant(0.01), test::notes_material(0.3));
+  Material stiff = test::notes_material(0.3);
+  stiff.young_modulus = 4e5;
+  desc.materials.push_back(stiff);
+  desc.cell_material = {0, 1};
+  Result<Model> model = build_model(desc);
+  ASSERT_TRUE(model.ok()) << model.message();
+  // the y-edges of the interface face carry one share of each material (k is proportional to E)
+  const int a = model->node_at({1, 0, 0});
+  const int b = model->node_at({1, 1, 0});
+  for (int s = 0; s < model->num_springs(); ++s) {
+    if (model->spring_nodes[s] == std::array<int, 2>{a, b}) {
+      EXPECT_NEAR(model->spring_stiffness[s], 5 * 211.5384615384615, 1e-9);
+    }
+  }
+}
+
+TEST(Model, RejectsBadDescriptions) {
+  LatticeDesc desc = box_lattice({1, 1, 1}, Eigen::Vector3d::Constant(0.01), Material{});
+  desc.cells.push_back(desc.cells[0]);
+  Result<Model> duplicate = build_model(desc);
+  ASSERT_FALSE(duplicate.ok());
+  EXPECT_NE(duplicate.message().find("listed twice"), std::string::npos);
+
+  desc = box_lattice({1, 1, 1}, Eigen::Vector3d(0.01, -0.01, 0.01), Material{});
+  Result<Model> negative = build_model(desc);
+  ASSERT_FALSE(negative.ok());
+  EXPECT_NE(negative.message().find("cell_size"), std::string::npos);
+
+  desc = box_lattice({0, 1, 1}, Eigen::Vector3d::Constant(0.01), Material{});
+  Result<Model> empty = build_model(desc);
+  ASSERT_FALSE(empty.ok());
+  EXPECT_NE(empty.message().find("no cells"), std::string::npos);
+
+  desc = box_lattice({1, 1, 1}, Eigen::Vector3d::Constant(0.01), Material{});
+  desc.materials[0].young_modulus = 0.0;
+  Result<Model> soft = build_model(desc);
+  ASSERT_FALSE(soft.ok());
+  EXPECT_NE(soft.message().find("young_modulus"), std::string::npos);
+
+  desc = box_lattice({1, 1, 1}, Eigen::Vector3d::Constant(0.01), Material{});
+  desc.cell_material = {3};
+  Result<Model> missing = build_model(desc);
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.message().find("material 3"), std::string::npos);
+}
+
+TEST(Model, AnyCellSetSharesNodes) {
+  // an L of three cells: 8 + 4 + 4 nodes
+  LatticeDesc desc;
+  desc.cells = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  Result<Model> model = build_model(desc);
+  ASSERT_TRUE(model.ok()) << model.message();
+  EXPECT_EQ(model->num_nodes(), 16);
+  EXPECT_EQ(model->node_at({2, 2, 0}), -1);
+}
+
+}  // namespace
+}  // namespace cubespring

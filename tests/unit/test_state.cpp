@@ -1,0 +1,102 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include <cstdio>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "cubespring/constraints.h"
+#include "cubespring/integrator.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+std::string temp_path(const std::string& name) { return ::testing::TempDir() + name; }
+
+TEST(State, ReplayFromASavedStateIsBitIdentical) {
+  const Model model = test::box_model({4, 3, 3}, test::notes_material(0.3));
+  Constraints clamp(model);
+  ASSERT_TRUE(clamp.fix_box(model, {-1, -1, -1}, {1e-9, 1, 1}).ok());
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  StepSettings settings;
+  settings.time_step = 0.5 * max_stable_time_step(model);
+  State state = rest_state(model);
+  Stepper stepper(model);
+  for (int i = 0; i < 50; ++i) ASSERT_TRUE(stepper.step(model, clamp, loads, settings, state).ok());
+  const std::string path = temp_path("cubespring_state.bin");
+  ASSERT_TRUE(save_state(state, path).ok());
+  for (int i = 0; i < 50; ++i) ASSERT_TRUE(stepper.step(model, clamp, loads, settings, state).ok());
+
+  Result<State> loaded = load_state(model, path);
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  State replay = loaded.value();
+  Stepper fresh(model);
+  for (int i = 0; i < 50; ++i) ASSERT_TRUE(fresh.step(model, clamp, loads, settings, replay).ok());
+  EXPECT_TRUE(replay == state);
+  EXPECT_EQ(state_hash(replay), state_hash(state));
+  std::remove(path.c_str());
+}
+
+TEST(State, LoadRejectsWrongFiles) {
+  const Model small = test::box_model({1, 1, 1}, Material{});
+  const Model large = test::box_model({2, 1, 1}, Material{});
+  const std::string path = temp_path("cubespring_small.bin");
+  ASSERT_TRUE(save_state(rest_state(small), path).ok());
+  Result<State> mismatch = load_state(large, path);
+  ASSERT_FALSE(mismatch.ok());
+  EXPECT_NE(mismatch.message().find("8 nodes"), std::string::npos) << mismatch.message();
+  EXPECT_NE(mismatch.message().find(path), std::string::npos);
+
+  std::ofstream(path) << "not a state";
+  Result<State> garbage = load_state(small, path);
+  ASSERT_FALSE(garbage.ok());
+  EXPECT_NE(garbage.message().find("bad header"), std::string::npos);
+
+  Result<State> missing = load_state(small, temp_path("no/such/file.bin"));
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.message().find("cannot open"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+TEST(State, HashSeesOneBit) {
+  const Model model = test::box_model({1, 1, 1}, Material{});
+  State a = rest_state(model);
+  State b = a;
+  EXPECT_EQ(state_hash(a), state_hash(b));
+  b.positions(0, 3) = std::nextafter(b.positions(0, 3), 1.0);
+  EXPECT_NE(state_hash(a), state_hash(b));
+  EXPECT_FALSE(a == b);
+}
+
+TEST(Constraints, RejectOutOfRangeNodesAndEmptyBoxes) {
+  const Model model = test::box_model({1, 1, 1}, Material{});
+  Constraints constraints(model);
+  const Status bad = constraints.fix_nodes(model, {0, 8});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.message().find("node 8"), std::string::npos);
+  const Status empty = constraints.fix_box(model, {1, 1, 1}, {2, 2, 2});
+  ASSERT_FALSE(empty.ok());
+  EXPECT_NE(empty.message().find("no node"), std::string::npos);
+  EXPECT_EQ(constraints.num_driven(), 0);
+  ASSERT_TRUE(constraints.fix_box(model, {-1, -1, -1}, {1e-9, 1, 1}).ok());
+  EXPECT_EQ(constraints.num_driven(), 4);
+}
+
+TEST(Constraints, DrivenNodesFollowTheirTarget) {
+  const Model model = test::box_model({2, 1, 1}, test::notes_material(0.3));
+  Constraints constraints(model);
+  const int node = model.node_at({2, 0, 0});
+  ASSERT_TRUE(constraints.prescribe_displacement(model, node, {1e-3, 0, 0}).ok());
+  State state = rest_state(model);
+  StepSettings settings;
+  settings.time_step = 1e-5;
+  Stepper stepper(model);
+  ASSERT_TRUE(stepper.step(model, constraints, Loads{}, settings, state).ok());
+  EXPECT_DOUBLE_EQ(state.positions(0, node), model.rest_positions(0, node) + 1e-3);
+  EXPECT_NEAR(state.velocities(0, node), 1e-3 / 1e-5, 1e-9);
+}
+
+}  // namespace
+}  // namespace cubespring

@@ -1,0 +1,93 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The stiffness matrix against finite differences of the forces, and the zero-energy modes.
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+#include <gtest/gtest.h>
+
+#include "cubespring/stiffness.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+Eigen::MatrixXd dense_stiffness(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind) {
+  StiffnessAssembler assembler(model);
+  SparseMatrix k;
+  assembler.assemble(model, x, kind, 1.0, 0.0, k);
+  return Eigen::MatrixXd(k);
+}
+
+Eigen::MatrixXd finite_difference_stiffness(const Model& model, const Eigen::Matrix3Xd& x) {
+  const double step = 1e-7;
+  Eigen::MatrixXd k(x.size(), x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::Matrix3Xd plus = x, minus = x;
+    plus.data()[i] += step;
+    minus.data()[i] -= step;
+    const Eigen::Matrix3Xd df = test::elastic_forces(model, plus) - test::elastic_forces(model, minus);
+    k.col(i) = -Eigen::Map<const Eigen::VectorXd>(df.data(), df.size()) / (2 * step);
+  }
+  return k;
+}
+
+TEST(Stiffness, ExactMatchesFiniteDifferences) {
+  for (double nu : {0.0, 0.3, 0.49}) {
+    const Model model = test::box_model({2, 1, 1}, test::notes_material(nu));
+    const Eigen::Matrix3Xd x = test::perturbed(model, 1.5e-3);
+    const Eigen::MatrixXd exact = dense_stiffness(model, x, StiffnessKind::kExact);
+    const Eigen::MatrixXd numeric = finite_difference_stiffness(model, x);
+    EXPECT_LT((exact - numeric).cwiseAbs().maxCoeff(), 1e-6 * exact.cwiseAbs().maxCoeff()) << nu;
+    EXPECT_LT((exact - exact.transpose()).cwiseAbs().maxCoeff(), 1e-12 * exact.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST(Stiffness, ExactMatchesFiniteDifferencesInACrushedCell) {
+  const Model model = test::box_model({1, 1, 1}, test::notes_material(0.3));
+  Eigen::Matrix3Xd x = test::perturbed(model, 5e-4);
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    if (model.node_grid_index[n].z() == 1) x(2, n) -= 0.0095;
+  }
+  const Eigen::MatrixXd exact = dense_stiffness(model, x, StiffnessKind::kExact);
+  const Eigen::MatrixXd numeric = finite_difference_stiffness(model, x);
+  EXPECT_LT((exact - numeric).cwiseAbs().maxCoeff(), 1e-6 * exact.cwiseAbs().maxCoeff());
+}
+
+TEST(Stiffness, ApproximationIsPositiveSemiDefinite) {
+  const Model model = test::box_model({2, 2, 1}, test::notes_material(0.49));
+  Eigen::Matrix3Xd x = test::perturbed(model, 3e-3);
+  x.row(0) *= 0.9;  // compress: negative geometric stiffness in the exact matrix
+  const Eigen::MatrixXd approx = dense_stiffness(model, x, StiffnessKind::kPositiveSemiDefinite);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(approx);
+  EXPECT_GT(solver.eigenvalues().minCoeff(), -1e-9 * solver.eigenvalues().maxCoeff());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> exact(dense_stiffness(model, x, StiffnessKind::kExact));
+  EXPECT_LT(exact.eigenvalues().minCoeff(), -1e-6 * exact.eigenvalues().maxCoeff());
+}
+
+// Count eigenvalues below a relative threshold of the free body's stiffness at rest.
+int zero_modes(const Model& model) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense_stiffness(model, model.rest_positions, StiffnessKind::kExact));
+  const Eigen::VectorXd& values = solver.eigenvalues();
+  EXPECT_GT(values.minCoeff(), -1e-9 * values.maxCoeff());
+  return static_cast<int>((values.array().abs() < 1e-9 * values.maxCoeff()).count());
+}
+
+TEST(Stiffness, FreeBlocksHaveSixRigidAndThreeCheckerboardZeroModes) {
+  for (const Eigen::Vector3i& cells : {Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(2, 2, 2), Eigen::Vector3i(4, 2, 2)}) {
+    EXPECT_EQ(zero_modes(test::box_model(cells, test::notes_material(0.3))), 9) << cells.transpose();
+  }
+}
+
+TEST(Stiffness, CheckerboardModeIsInTheKernel) {
+  const Model model = test::box_model({3, 3, 3}, test::notes_material(0.3));
+  const Eigen::MatrixXd k = dense_stiffness(model, model.rest_positions, StiffnessKind::kExact);
+  Eigen::VectorXd mode = Eigen::VectorXd::Zero(3 * model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3i& i = model.node_grid_index[n];
+    mode[3 * n + 0] = ((i.y() + i.z()) % 2) ? -1.0 : 1.0;  // u_x = (-1)^(j+k)
+  }
+  EXPECT_LT((k * mode).norm(), 1e-10 * k.norm());
+}
+
+}  // namespace
+}  // namespace cubespring
