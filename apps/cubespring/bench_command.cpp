@@ -1,0 +1,217 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// cubespring bench: time per step of each integrator on blocks and a voxelized sphere, beside a
+// bare spring-force pass over the same springs (the floor a full step is compared with).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "arguments.h"
+#include "commands.h"
+#include "cubespring/constraints.h"
+#include "cubespring/integrator.h"
+
+namespace cubespring::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct BenchOptions {
+  std::string sizes = "16,4,4;32,8,8;64,16,16;32,32,32;64,64,64";
+  int sphere_cells_across = 32;
+  double min_seconds = 0.3;       // per measurement
+  bool implicit = true;
+  int implicit_max_cells = 40000; // implicit steps are timed up to this many cells
+  bool json = false;
+};
+
+// Times fn() repeatedly for at least min_seconds and returns the mean time per call [s].
+template <typename Fn>
+double time_per_call(double min_seconds, Fn&& fn) {
+  fn();  // warm-up: caches, first-touch allocations
+  int calls = 0;
+  const auto start = Clock::now();
+  double elapsed = 0.0;
+  do {
+    fn();
+    ++calls;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  } while (elapsed < min_seconds);
+  return elapsed / calls;
+}
+
+// The floor: one pass of linear spring forces, f = k (l - l0) d / l, scattered to both ends.
+void bare_spring_pass(const Model& model, const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& forces) {
+  forces.setZero();
+  const int num_springs = model.num_springs();
+  for (int s = 0; s < num_springs; ++s) {
+    const int i = model.spring_nodes[s][0];
+    const int j = model.spring_nodes[s][1];
+    const Eigen::Vector3d d = x.col(j) - x.col(i);
+    const double length = d.norm();
+    const Eigen::Vector3d f = (model.spring_stiffness[s] * (length - model.spring_rest_length[s]) / length) * d;
+    forces.col(i) += f;
+    forces.col(j) -= f;
+  }
+}
+
+LatticeDesc sphere_lattice(int across, double cell_size, const Material& material) {
+  LatticeDesc desc;
+  desc.cell_size.setConstant(cell_size);
+  desc.materials = {material};
+  const double radius = 0.5 * across;
+  for (int k = 0; k < across; ++k) {
+    for (int j = 0; j < across; ++j) {
+      for (int i = 0; i < across; ++i) {
+        const Eigen::Vector3d centre = Eigen::Vector3d(i, j, k).array() + 0.5 - radius;
+        if (centre.norm() <= radius) desc.cells.emplace_back(i, j, k);
+      }
+    }
+  }
+  return desc;
+}
+
+struct Row {
+  std::string name;
+  int cells = 0, nodes = 0, springs = 0;
+  double bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
+  int implicit_iterations = 0;
+};
+
+Row bench_body(const std::string& name, const LatticeDesc& desc, const BenchOptions& o) {
+  Result<Model> built = build_model(desc);
+  if (!built) throw std::runtime_error(built.message());
+  const Model& model = built.value();
+  Row row;
+  row.name = name;
+  row.cells = model.num_cells();
+  row.nodes = model.num_nodes();
+  row.springs = model.num_springs();
+
+  // clamped at its lowest x, under gravity, slightly disturbed so that every term works
+  Constraints clamp(model);
+  const double x_min = model.rest_positions.row(0).minCoeff();
+  (void)clamp.fix_box(model, {-1e9, -1e9, -1e9}, {x_min + 1e-9, 1e9, 1e9});
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  State start = rest_state(model);
+  start.positions.array() += 1e-5 * Eigen::Matrix3Xd::Random(3, model.num_nodes()).array();
+
+  Eigen::Matrix3Xd forces(3, model.num_nodes());
+  row.bare = time_per_call(o.min_seconds, [&] { bare_spring_pass(model, start.positions, forces); });
+
+  const auto explicit_time = [&](Integrator integrator, int threads) {
+    StepSettings settings;
+    settings.integrator = integrator;
+    settings.threads = threads;
+    settings.time_step = 0.5 * max_stable_time_step(model);
+    State state = start;
+    Stepper stepper(model);
+    return time_per_call(o.min_seconds, [&] { (void)stepper.step(model, clamp, loads, settings, state); });
+  };
+  row.symplectic1 = explicit_time(Integrator::kSymplecticEuler, 1);
+  row.symplectic2 = explicit_time(Integrator::kSymplecticEuler, 2);
+  row.verlet1 = explicit_time(Integrator::kVelocityVerlet, 1);
+
+  if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
+    StepSettings settings;
+    settings.integrator = Integrator::kImplicitEuler;
+    settings.time_step = 1e-3;
+    settings.solver_tolerance = 1e-6;
+    State state = start;
+    Stepper stepper(model);
+    int iterations = 0, steps = 0;
+    row.implicit_step = time_per_call(o.min_seconds, [&] {
+      const StepReport report = stepper.step(model, clamp, loads, settings, state);
+      iterations += report.solver_iterations;
+      ++steps;
+    });
+    row.implicit_iterations = iterations / std::max(1, steps);
+  }
+  return row;
+}
+
+std::vector<Eigen::Vector3i> parse_size_list(const std::string& text) {
+  std::vector<Eigen::Vector3i> sizes;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ';')) {
+    Result<Eigen::Vector3i> counts = parse_counts("--sizes", item);
+    if (!counts) throw std::runtime_error(counts.message());
+    sizes.push_back(counts.value());
+  }
+  return sizes;
+}
+
+int run_bench(const BenchOptions& o) {
+  Material material;  // E = 1 MPa, nu = 0.3, rho = 1000
+  std::vector<Row> rows;
+  try {
+    for (const Eigen::Vector3i& n : parse_size_list(o.sizes)) {
+      std::ostringstream name;
+      name << n.x() << "x" << n.y() << "x" << n.z();
+      rows.push_back(bench_body(name.str(), box_lattice(n, Eigen::Vector3d::Constant(0.01), material), o));
+      if (!o.json) std::fprintf(stderr, "benched %s\n", name.str().c_str());
+    }
+    if (o.sphere_cells_across > 0) {
+      rows.push_back(bench_body("sphere " + std::to_string(o.sphere_cells_across),
+                                sphere_lattice(o.sphere_cells_across, 0.01, material), o));
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  }
+
+  if (o.json) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const Row& r : rows) {
+      out.push_back({{"body", r.name}, {"cells", r.cells}, {"nodes", r.nodes}, {"springs", r.springs},
+                     {"bare_spring_pass_ms", 1e3 * r.bare}, {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
+                     {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}}},
+                     {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
+                     {"implicit_cg_iterations", r.implicit_iterations},
+                     {"implicit_wall_per_simulated_second_s", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
+    }
+    std::cout << out.dump(2) << "\n";
+    return 0;
+  }
+  std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (mean over >= %.1f s)\n", o.min_seconds);
+  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %7s %9s | %9s %9s %7s | %10s %5s %10s\n", "body", "cells", "nodes",
+              "springs", "bare", "symp 1t", "symp 2t", "2t gain", "full/bare", "Gspring/s", "verlet 1t", "", "implicit",
+              "CG it", "s/sim s");
+  for (const Row& r : rows) {
+    std::printf("%-12s %8d %9d %9d | %9.4f %9.4f %9.4f %7.2f %9.2f | %9.3f %9.4f %7s |", r.name.c_str(), r.cells, r.nodes,
+                r.springs, 1e3 * r.bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2, r.symplectic1 / r.symplectic2,
+                r.symplectic1 / r.bare, 1e-9 * r.springs / r.bare, 1e3 * r.verlet1, "");
+    if (r.implicit_step > 0) {
+      std::printf(" %10.3f %5d %10.2f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3);
+    } else {
+      std::printf(" %10s %5s %10s\n", "-", "-", "-");
+    }
+  }
+  std::printf("bare: one linear spring-force pass (the floor); symp: full symplectic Euler step (springs, correction,\n"
+              "inversion check, damping, integration); full/bare: 1-thread step over bare pass; Gspring/s: bare pass;\n"
+              "implicit: dt = 1 ms, CG to 1e-6; s/sim s: wall seconds per simulated second.\n");
+  return 0;
+}
+
+}  // namespace
+
+Command add_bench_command(CLI::App& app) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* cmd = app.add_subcommand("bench", "Time each integrator per step on blocks and a voxelized sphere");
+  cmd->add_option("--sizes", options->sizes, "blocks as NX,NY,NZ separated by ';'")->capture_default_str();
+  cmd->add_option("--sphere", options->sphere_cells_across, "cells across the voxelized sphere (0: none)")->capture_default_str();
+  cmd->add_option("--min-seconds", options->min_seconds, "time each measurement at least this long [s]")->capture_default_str();
+  cmd->add_option("--implicit-max-cells", options->implicit_max_cells, "time implicit steps up to this many cells")->capture_default_str();
+  cmd->add_flag("--json", options->json, "print a JSON array instead of the table");
+  return [options] { return run_bench(*options); };
+}
+
+}  // namespace cubespring::app

@@ -1,0 +1,17 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The subcommands of the cubespring tool: each registers its flags and runs when chosen.
+#pragma once
+
+#include <functional>
+
+#include <CLI/CLI.hpp>
+
+namespace cubespring::app {
+
+/// Adds a subcommand to the app; the returned function runs it after parsing and gives the exit code.
+using Command = std::function<int()>;
+Command add_measure_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
+
+}  // namespace cubespring::app

@@ -1,0 +1,33 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// cubespring: calibrated soft-tissue simulation from the command line.
+#include <iostream>
+#include <map>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"cubespring: calibrated cube mass-spring soft tissue (SI units throughout)"};
+  app.set_version_flag("--version", "cubespring 0.1.0");
+  std::map<std::string, cubespring::app::Command> commands;
+  commands["measure"] = cubespring::app::add_measure_command(app);
+  commands["bench"] = cubespring::app::add_bench_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return 0;
+  } catch (const CLI::CallForVersion& e) {
+    std::cout << e.what() << "\n";
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    // one line that names the argument, then a non-zero exit
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  }
+  for (auto& [name, run] : commands) {
+    if (app.got_subcommand(name)) return run();
+  }
+  std::cout << app.help();
+  return 0;
+}

@@ -1,0 +1,191 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// cubespring measure {elongation|shear|inflation|cantilever}: the paper's virtual experiments.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "arguments.h"
+#include "commands.h"
+#include "cubespring/experiments.h"
+
+namespace cubespring::app {
+namespace {
+
+struct MeasureOptions {
+  std::string experiment;
+  double young = 1e6;
+  double poisson = 0.3;
+  double density = 1000.0;
+  std::string cells;      // empty: the experiment's default
+  std::string cell_size = "0.01";
+  double strain = 1e-4;
+  double gravity = 9.81;
+  std::string control = "displacement";
+  std::string model = "baudet2007";
+  bool json = false;
+};
+
+nlohmann::json to_json(const Moduli& m) {
+  nlohmann::json j = nlohmann::json::object();
+  if (m.young_modulus) j["young_modulus"] = *m.young_modulus;
+  if (m.poisson_ratio) j["poisson_ratio"] = *m.poisson_ratio;
+  if (m.shear_modulus) j["shear_modulus"] = *m.shear_modulus;
+  if (m.bulk_modulus) j["bulk_modulus"] = *m.bulk_modulus;
+  return j;
+}
+
+nlohmann::json planes(const Eigen::Vector3d& v) { return {{"yz", v[0]}, {"xz", v[1]}, {"xy", v[2]}}; }
+
+nlohmann::json report_json(const ExperimentResult& r) {
+  const ExperimentSettings& s = r.settings;
+  nlohmann::json j;
+  j["experiment"] = experiment_name(r.experiment);
+  j["inputs"] = {{"young_modulus", s.material.young_modulus},
+                 {"poisson_ratio", s.material.poisson_ratio},
+                 {"density", s.material.density},
+                 {"cells", {s.cells.x(), s.cells.y(), s.cells.z()}},
+                 {"cell_size", {s.cell_size.x(), s.cell_size.y(), s.cell_size.z()}},
+                 {"strain", s.strain},
+                 {"gravity", s.gravity},
+                 {"model", cell_model_name(s.model)}};
+  if (r.experiment == Experiment::kShear) j["inputs"]["control"] = shear_control_name(s.shear_control);
+  j["measured"] = to_json(r.measured);
+  j["expected"] = to_json(r.expected);
+  j["error"] = to_json(r.error);
+  if (r.shear_moduli) {
+    j["measured"]["shear_moduli"] = planes(*r.shear_moduli);
+    j["expected"]["shear_moduli"] = planes(*r.expected_shear_moduli);
+  }
+  if (r.tip_deflection) {
+    j["tip_deflection"] = *r.tip_deflection;
+    j["measured"]["tip_deflection"] = *r.tip_deflection;
+    j["expected"]["euler_bernoulli"] = *r.euler_bernoulli;
+    j["expected"]["timoshenko"] = *r.timoshenko;
+    j["error"]["euler_bernoulli"] = *r.tip_deflection / *r.euler_bernoulli - 1.0;
+    j["error"]["timoshenko"] = *r.tip_deflection / *r.timoshenko - 1.0;
+    nlohmann::json nodes = nlohmann::json::array();
+    for (int n = 0; n < r.model.num_nodes(); ++n) {
+      const Eigen::Vector3d rest = r.model.rest_positions.col(n);
+      const Eigen::Vector3d u = r.state.positions.col(n) - rest;
+      nodes.push_back({{"rest", {rest.x(), rest.y(), rest.z()}}, {"displacement", {u.x(), u.y(), u.z()}}});
+    }
+    j["nodes"] = std::move(nodes);
+  }
+  j["solver"] = {{"load_steps", r.load_steps}, {"newton_iterations", r.newton_iterations}};
+  return j;
+}
+
+void print_row(const char* name, const std::optional<double>& measured, const std::optional<double>& expected,
+               const std::optional<double>& error, const char* unit, bool relative) {
+  if (!measured) return;
+  std::printf("  %-16s %14.6g %14.6g %12.3e%s  %s\n", name, *measured, expected.value_or(0.0), error.value_or(0.0),
+              relative ? " (rel)" : " (abs)", unit);
+}
+
+void report_table(const ExperimentResult& r) {
+  const ExperimentSettings& s = r.settings;
+  std::printf("%s: E = %g Pa, nu = %g, rho = %g kg/m^3, %d x %d x %d cells of %g x %g x %g m, model %s\n",
+              experiment_name(r.experiment), s.material.young_modulus, s.material.poisson_ratio, s.material.density,
+              s.cells.x(), s.cells.y(), s.cells.z(), s.cell_size.x(), s.cell_size.y(), s.cell_size.z(),
+              cell_model_name(s.model));
+  if (r.experiment == Experiment::kShear) std::printf("shear control: %s\n", shear_control_name(s.shear_control));
+  if (r.tip_deflection) {
+    std::printf("  %-16s %14s\n", "", "tip [m]");
+    std::printf("  %-16s %14.6e\n", "lattice", *r.tip_deflection);
+    std::printf("  %-16s %14.6e  (lattice %+.2f%%)\n", "Euler-Bernoulli", *r.euler_bernoulli,
+                100 * (*r.tip_deflection / *r.euler_bernoulli - 1));
+    std::printf("  %-16s %14.6e  (lattice %+.2f%%)\n", "Timoshenko", *r.timoshenko,
+                100 * (*r.tip_deflection / *r.timoshenko - 1));
+    return;
+  }
+  std::printf("  %-16s %14s %14s %12s\n", "quantity", "measured", "expected", "error");
+  print_row("young_modulus", r.measured.young_modulus, r.expected.young_modulus, r.error.young_modulus, "Pa", true);
+  print_row("poisson_ratio", r.measured.poisson_ratio, r.expected.poisson_ratio, r.error.poisson_ratio, "", false);
+  print_row("shear_modulus", r.measured.shear_modulus, r.expected.shear_modulus, r.error.shear_modulus, "Pa", true);
+  print_row("bulk_modulus", r.measured.bulk_modulus, r.expected.bulk_modulus, r.error.bulk_modulus, "Pa", true);
+  if (r.shear_moduli) {
+    const char* names[] = {"G_yz", "G_xz", "G_xy"};
+    for (int p = 0; p < 3; ++p) {
+      const double expected = (*r.expected_shear_moduli)[p];
+      print_row(names[p], (*r.shear_moduli)[p], expected, (*r.shear_moduli)[p] / expected - 1, "Pa", true);
+    }
+  }
+}
+
+// Names the flag behind a library validation message.
+std::string with_flag(const std::string& message) {
+  const std::pair<const char*, const char*> flags[] = {
+      {"young_modulus", "--young"}, {"poisson_ratio", "--poisson"}, {"density", "--density"},
+      {"strain", "--strain"},       {"gravity", "--gravity"},       {"cell size", "--cell-size"}};
+  for (const auto& [field, flag] : flags) {
+    if (message.find(field) != std::string::npos) return std::string(flag) + ": " + message;
+  }
+  return message;
+}
+
+int run_measure(const MeasureOptions& o) {
+  Result<Experiment> experiment = parse_experiment(o.experiment);
+  if (!experiment) {
+    std::cerr << "error: " << experiment.message() << "\n";
+    return 2;
+  }
+  ExperimentSettings settings;
+  settings.material.young_modulus = o.young;
+  settings.material.poisson_ratio = o.poisson;
+  settings.material.density = o.density;
+  settings.strain = o.strain;
+  settings.gravity = o.gravity;
+  settings.shear_control = o.control == "force" ? ShearControl::kForce : ShearControl::kDisplacement;
+  const std::string default_cells = experiment.value() == Experiment::kCantilever ? "16,4,4" : "1,1,1";
+  Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
+  Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
+  for (const Status* status : {&cells.status(), &cell_size.status()}) {
+    if (!status->ok()) {
+      std::cerr << "error: " << status->message() << "\n";
+      return 2;
+    }
+  }
+  settings.cells = cells.value();
+  settings.cell_size = cell_size.value();
+  Result<ExperimentResult> result = run_experiment(experiment.value(), settings);
+  if (!result) {
+    std::cerr << "error: " << with_flag(result.message()) << "\n";
+    return 2;
+  }
+  if (o.json) {
+    std::cout << report_json(result.value()).dump(2) << "\n";
+  } else {
+    report_table(result.value());
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command add_measure_command(CLI::App& app) {
+  auto options = std::make_shared<MeasureOptions>();
+  CLI::App* cmd = app.add_subcommand("measure", "Run one of the paper's virtual experiments and measure E, nu, G, B "
+                                                "or the cantilever's tip deflection");
+  cmd->add_option("experiment", options->experiment, "elongation, shear, inflation or cantilever")
+      ->required()
+      ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever"}));
+  cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->capture_default_str();
+  cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->capture_default_str();
+  cmd->add_option("--density", options->density, "density [kg/m^3]")->capture_default_str();
+  cmd->add_option("--cells", options->cells, "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4)");
+  cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]")->capture_default_str();
+  cmd->add_option("--strain", options->strain, "load as the continuum strain it causes (small deformation)")
+      ->capture_default_str();
+  cmd->add_option("--gravity", options->gravity, "cantilever gravity along -z [m/s^2]")->capture_default_str();
+  cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
+      ->check(CLI::IsMember({"displacement", "force"}))
+      ->capture_default_str();
+  cmd->add_option("--model", options->model, "cell model")->check(CLI::IsMember({"baudet2007"}))->capture_default_str();
+  cmd->add_flag("--json", options->json, "print one JSON object on stdout");
+  return [options] { return run_measure(*options); };
+}
+
+}  // namespace cubespring::app
