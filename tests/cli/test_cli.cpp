@@ -1,0 +1,116 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The cubespring tool as a user scripts it: JSON keys and values, and one-line errors for bad input.
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace {
+
+struct ToolRun {
+  int exit_code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+ToolRun run_tool(const std::string& arguments, bool merge_stderr = true) {
+  const std::string command = std::string(CUBESPRING_CLI_PATH) + " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+  ToolRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.out += buffer.data();
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+nlohmann::json run_json(const std::string& arguments) {
+  const ToolRun run = run_tool(arguments + " --json", false);
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  return nlohmann::json::parse(run.out);
+}
+
+TEST(Cli, ElongationJsonCarriesTheContractKeys) {
+  const nlohmann::json j = run_json("measure elongation --young 2e5 --poisson 0.45");
+  for (const char* key : {"inputs", "measured", "expected", "error"}) EXPECT_TRUE(j.contains(key)) << key;
+  for (const char* key : {"young_modulus", "poisson_ratio", "density", "cells", "cell_size", "strain", "gravity", "model"}) {
+    EXPECT_TRUE(j["inputs"].contains(key)) << key;
+  }
+  EXPECT_EQ(j["inputs"]["model"], "baudet2007");
+  EXPECT_DOUBLE_EQ(j["inputs"]["young_modulus"].get<double>(), 2e5);
+  EXPECT_NEAR(j["measured"]["young_modulus"].get<double>() / 2e5, 1.0, 1e-3);
+  EXPECT_NEAR(j["measured"]["poisson_ratio"].get<double>(), 0.45, 1e-3);
+  EXPECT_LT(std::abs(j["error"]["young_modulus"].get<double>()), 1e-3);
+}
+
+TEST(Cli, InflationAndShearMeasureTheirModuli) {
+  const nlohmann::json b = run_json("measure inflation --poisson 0.49 --cells 2,2,2");
+  EXPECT_NEAR(b["measured"]["bulk_modulus"].get<double>() / b["expected"]["bulk_modulus"].get<double>(), 1.0, 1e-3);
+  const nlohmann::json g = run_json("measure shear");
+  EXPECT_EQ(g["inputs"]["control"], "displacement");
+  EXPECT_NEAR(g["error"]["shear_modulus"].get<double>(), 0.0, 1e-3);
+  const nlohmann::json f = run_json("measure shear --control force");
+  EXPECT_EQ(f["inputs"]["control"], "force");
+  EXPECT_NEAR(f["measured"]["shear_modulus"].get<double>() / f["expected"]["shear_modulus"].get<double>(),
+              (1 + 4 * 0.3) / (2 + 4 * 0.3), 1e-3);
+}
+
+TEST(Cli, CantileverReportsTipAndEveryNode) {
+  const nlohmann::json j = run_json("measure cantilever --cells 8,2,2 --cell-size 0.02");
+  const double tip = j["tip_deflection"].get<double>();
+  EXPECT_LT(tip, 0.0);
+  ASSERT_EQ(j["nodes"].size(), 9u * 3 * 3);
+  double sum = 0;
+  int count = 0;
+  for (const auto& node : j["nodes"]) {
+    ASSERT_EQ(node["rest"].size(), 3u);
+    ASSERT_EQ(node["displacement"].size(), 3u);
+    if (std::abs(node["rest"][0].get<double>() - 0.16) < 1e-12) {
+      sum += node["displacement"][2].get<double>();
+      ++count;
+    }
+  }
+  EXPECT_EQ(count, 9);
+  EXPECT_NEAR(sum / count, tip, 1e-15);
+  EXPECT_LT(j["expected"]["timoshenko"].get<double>(), j["expected"]["euler_bernoulli"].get<double>());
+}
+
+TEST(Cli, TableWithoutJson) {
+  const ToolRun run = run_tool("measure elongation");
+  EXPECT_EQ(run.exit_code, 0);
+  EXPECT_NE(run.out.find("young_modulus"), std::string::npos) << run.out;
+}
+
+struct BadArgument {
+  const char* arguments;
+  const char* named;  // what the one-line error must name
+};
+
+class CliRejects : public ::testing::TestWithParam<BadArgument> {};
+
+TEST_P(CliRejects, WithOneLineNamingTheArgument) {
+  const ToolRun run = run_tool(GetParam().arguments);
+  EXPECT_NE(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find(GetParam().named), std::string::npos) << run.out;
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    BadArguments, CliRejects,
+    ::testing::Values(BadArgument{"measure twist", "twist"}, BadArgument{"measure elongation --poisson 0.5", "--poisson"},
+                      BadArgument{"measure elongation --young 0", "--young"},
+                      BadArgument{"measure elongation --cells 0,1,1", "--cells"},
+                      BadArgument{"measure elongation --yung 1e6", "--yung"},
+                      BadArgument{"measure elongation --cell-size -0.01", "--cell-size"},
+                      BadArgument{"measure cantilever --cells 16,4", "--cells"},
+                      BadArgument{"measure shear --control torque", "--control"},
+                      BadArgument{"measure elongation --young abc", "--young"}));
+
+}  // namespace
