@@ -21,10 +21,6 @@ void drive_nodes(const Constraints& constraints, double dt, const State& start, 
   }
 }
 
-// Applies M^-1 to forces in place (columns scaled by 1 / mass).
-void divide_by_mass(const Model& model, Eigen::Matrix3Xd& forces) {
-  for (int n = 0; n < model.num_nodes(); ++n) forces.col(n) /= model.mass[n];
-}
 
 }  // namespace
 
@@ -70,12 +66,12 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
   return explicit_step(model, constraints, loads, settings, state);
 }
 
-StepReport Stepper::check(const Model& model, const StepSettings& settings, const State& candidate) const {
+StepReport Stepper::check(const Model& model, const StepSettings& settings, double fastest,
+                          const State& candidate) const {
   const double limit = settings.speed_limit > 0.0 ? settings.speed_limit : 10.0 * max_wave_speed(model);
-  if (!candidate.positions.allFinite() || !candidate.velocities.allFinite()) {
+  if (!std::isfinite(fastest) || !candidate.positions.allFinite()) {
     return {StepStatus::kUnstable, "positions or velocities became NaN or infinite"};
   }
-  const double fastest = std::sqrt(candidate.velocities.colwise().squaredNorm().maxCoeff());
   if (fastest > limit) {
     std::ostringstream message;
     message << "a node moves at " << fastest << " m/s, above the limit of " << limit
@@ -86,32 +82,42 @@ StepReport Stepper::check(const Model& model, const StepSettings& settings, cons
   return {};
 }
 
+// One kick-drift sweep over the nodes: v' = v0 + kick M^-1 f, x' = x0 + drift v'. Returns the
+// largest squared speed, NaN if any velocity is not finite.
+double kick_drift(const Model& model, const Eigen::Matrix3Xd& forces, double kick, double drift,
+                  const State& from, State& to) {
+  double fastest_sq = 0.0;
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3d v = from.velocities.col(n) + (kick / model.mass[n]) * forces.col(n);
+    to.velocities.col(n) = v;
+    to.positions.col(n) = from.positions.col(n) + drift * v;
+    const double speed_sq = v.squaredNorm();
+    fastest_sq = speed_sq > fastest_sq || std::isnan(speed_sq) ? speed_sq : fastest_sq;
+  }
+  return fastest_sq;
+}
+
 StepReport Stepper::explicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                                   const StepSettings& settings, State& state) {
   const double dt = settings.time_step;
   const ForceOptions options{true, settings.threads};
-  candidate_ = state;
+  if (candidate_.positions.cols() != model.num_nodes()) candidate_ = state;
+  compute_forces(model, state, loads, options, workspace_, forces_);
+  double fastest_sq = 0.0;
   if (settings.integrator == Integrator::kSymplecticEuler) {
     // v += dt M^-1 f(x, v); x += dt v
-    compute_forces(model, candidate_, loads, options, workspace_, forces_);
-    divide_by_mass(model, forces_);
-    candidate_.velocities += dt * forces_;
-    candidate_.positions += dt * candidate_.velocities;
+    fastest_sq = kick_drift(model, forces_, dt, dt, state, candidate_);
   } else {
-    // half kick, drift, then a half kick with the force at the new positions (damping taken at
-    // the half-step velocity)
-    compute_forces(model, candidate_, loads, options, workspace_, forces_);
-    divide_by_mass(model, forces_);
-    candidate_.velocities += (0.5 * dt) * forces_;
-    candidate_.positions += dt * candidate_.velocities;
+    // half kick and drift, then a half kick with the force at the new positions (its damping
+    // taken at the half-step velocity)
+    kick_drift(model, forces_, 0.5 * dt, dt, state, candidate_);
     drive_nodes(constraints, dt, state, candidate_);
     compute_forces(model, candidate_, loads, options, workspace_, forces_);
-    divide_by_mass(model, forces_);
-    candidate_.velocities += (0.5 * dt) * forces_;
+    fastest_sq = kick_drift(model, forces_, 0.5 * dt, 0.0, candidate_, candidate_);
   }
   drive_nodes(constraints, dt, state, candidate_);
   candidate_.time = state.time + dt;
-  StepReport report = check(model, settings, candidate_);
+  StepReport report = check(model, settings, std::sqrt(fastest_sq), candidate_);
   if (report.ok()) std::swap(state, candidate_);
   return report;
 }
@@ -197,7 +203,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   candidate_.positions += dt * candidate_.velocities;
   drive_nodes(constraints, dt, state, candidate_);
   candidate_.time = state.time + dt;
-  StepReport checked = check(model, settings, candidate_);
+  StepReport checked = check(model, settings, std::sqrt(candidate_.velocities.colwise().squaredNorm().maxCoeff()), candidate_);
   if (!checked.ok()) return checked;
   std::swap(state, candidate_);
   return report;

@@ -182,6 +182,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
     std::size_t first_edge, edge_count;  // into edges; 0 count for a diagonal
   };
   std::vector<SpringRecord> springs;
+  model.cell_diagonals.resize(num_cells);
   for (std::size_t e = 0; e < edges.size();) {
     SpringRecord spring{edges[e].node0, edges[e].node1, 0.0, 0.0, e, 0};
     for (; e < edges.size() && edges[e].node0 == spring.node0 && edges[e].node1 == spring.node1; ++e) {
@@ -191,13 +192,12 @@ Result<Model> build_model(const LatticeDesc& desc) {
     }
     springs.push_back(spring);
   }
+  // corner c (c < 4, z side 0) has a lower node index than corner 7 - c: node order is z-major
   for (int c = 0; c < num_cells; ++c) {
     const CellCalibration& calibration = calibrations[model.cell_material[c]];
     const Material& material = desc.materials[model.cell_material[c]];
     for (int corner = 0; corner < 4; ++corner) {
-      const int a = model.cell_nodes[c][corner];
-      const int b = model.cell_nodes[c][7 - corner];
-      springs.push_back({std::min(a, b), std::max(a, b), calibration.diagonal_stiffness,
+      springs.push_back({model.cell_nodes[c][corner], model.cell_nodes[c][7 - corner], calibration.diagonal_stiffness,
                          material.stiffness_damping * calibration.diagonal_stiffness, 0, 0});
     }
   }
@@ -226,6 +226,23 @@ Result<Model> build_model(const LatticeDesc& desc) {
       model.cell_edges[edge.cell][edge.axis * kEdgesPerAxis + slot++] = s;
     }
     model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_axis.size());
+  }
+
+  // diagonals of each cell, found by their end nodes
+  for (int c = 0; c < num_cells; ++c) {
+    for (int corner = 0; corner < 4; ++corner) {
+      const std::array<int, 2> ends{model.cell_nodes[c][corner], model.cell_nodes[c][7 - corner]};
+      const auto first = model.spring_nodes.begin();
+      const auto it = std::lower_bound(first, model.spring_nodes.end(), ends);
+      model.cell_diagonals[c][corner] = static_cast<int>(it - first);
+    }
+  }
+  model.node_first_spring.assign(num_nodes + 1, 0);
+  for (const auto& ends : model.spring_nodes) ++model.node_first_spring[ends[0] + 1];
+  for (int n = 0; n < num_nodes; ++n) model.node_first_spring[n + 1] += model.node_first_spring[n];
+  for (const Material& material : desc.materials) {
+    model.has_stiffness_damping |= material.stiffness_damping > 0.0;
+    model.has_mass_damping |= material.mass_damping > 0.0;
   }
 
   // node -> spring incidence in ascending spring order (the order of a sequential scatter)

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,10 +27,12 @@ struct ForceOptions {
 
 /// Scratch arrays of the force passes, kept between calls so that a step allocates nothing.
 struct ForceWorkspace {
+  Eigen::Matrix3Xd spring_vector;         ///< x of the second node minus x of the first [m]
   std::vector<double> spring_length;      ///< current length [m]
   std::vector<double> spring_rate;        ///< d(length)/dt [m/s]
   std::vector<double> spring_tension;     ///< total tension (spring + correction + damping) [N]
   Eigen::Matrix3Xd cell_tension;          ///< correction tension on each axis' edges [N]
+  std::vector<std::uint8_t> cell_crushed; ///< 1 where the inversion recovery acts
   Eigen::Matrix3Xd spring_force;          ///< force on spring_nodes[s][0] [N] (gather pass)
   void resize(const Model& model);
 };

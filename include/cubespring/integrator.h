@@ -64,7 +64,7 @@ class Stepper {
                            const StepSettings& settings, State& state);
   StepReport implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                            const StepSettings& settings, State& state);
-  StepReport check(const Model& model, const StepSettings& settings, const State& candidate) const;
+  StepReport check(const Model& model, const StepSettings& settings, double fastest, const State& candidate) const;
 
   ForceWorkspace workspace_;
   Eigen::Matrix3Xd forces_;

@@ -55,6 +55,14 @@ struct Model {
   std::vector<Eigen::Matrix3d> cell_correction;
   std::vector<double> cell_inversion_stiffness;  ///< [Pa], see docs/model-baudet2007.md section 5
 
+  /// Springs are sorted by their first node: those with spring_nodes[s][0] == n are
+  /// node_first_spring[n] .. node_first_spring[n+1]-1 (num_nodes + 1 entries).
+  std::vector<int> node_first_spring;
+  /// The 4 body diagonals of each cell, from corner c to corner 7 - c for c = 0..3.
+  std::vector<std::array<int, 4>> cell_diagonals;
+  bool has_stiffness_damping = false;  ///< some material has beta > 0
+  bool has_mass_damping = false;       ///< some material has alpha > 0
+
   // node -> spring incidence, for a gather in a fixed order: entries node_spring_offset[n] ..
   // [n+1]-1 of node_spring, each spring * 2 + side (side 0: the node is spring_nodes[s][0]).
   std::vector<int> node_spring_offset;
