@@ -26,6 +26,8 @@ namespace fs = std::filesystem;
 constexpr const char* kJobName = "beam";
 constexpr const char* kLogName = "ccx.log";
 constexpr int kLogTailLines = 12;
+// above this many unknowns ccx uses its iterative solver (see build_deck)
+constexpr double kIterativeAboveEquations = 100000;
 
 // Local positions of the 20 nodes of a C3D20(R) brick on the doubled grid
 // (0, 1, 2 per axis), in CalculiX/Abaqus order: corners 1-4 on the bottom
@@ -217,14 +219,23 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   deck += "*DENSITY\n" + deck_number(spec.density) + "\n";
   deck += "*SOLID SECTION, ELSET=EALL, MATERIAL=BEAM_MATERIAL\n";
 
-  // SPOOLES is the sparse direct solver in Debian's build (no PARDISO or
-  // PaStiX there); the iterative solvers were slower on these meshes
+  // Debian's ccx has SPOOLES (direct) and ccx's own conjugate-gradient
+  // solvers, no PARDISO or PaStiX. Timed on two cores (linear step):
+  //   32x8x8 (29k equations):    SPOOLES 3.4 s, ITERATIVE SCALING 3.8 s
+  //   64x16x16 (215k equations): SPOOLES 90 s and 5.7 GB,
+  //                              ITERATIVE SCALING 57 s and 0.4 GB
+  // (ITERATIVE CHOLESKY was slower than both). The iterative answers match
+  // SPOOLES to the 7 digits of the .dat output in the sag; so direct for
+  // small meshes, where it is as fast and exact, iterative for large ones.
+  const double equations = 3.0 * grid.node_count;
+  const char* solver = equations > kIterativeAboveEquations ? "ITERATIVE SCALING" : "SPOOLES";
   if (spec.nonlinear) {
     // initial increment, period, minimum and maximum increment: ccx grows or
-    // cuts the increment from the convergence of each Newton solve
-    deck += "*STEP, NLGEOM, INC=1000\n*STATIC, SOLVER=SPOOLES\n0.1,1.,1e-6,0.25\n";
+    // cuts the increment from the convergence of each Newton solve; 0.25 took
+    // 11 iterations at E = 1e5 Pa where 0.1 (max 0.25) took 16
+    deck += "*STEP, NLGEOM, INC=1000\n*STATIC, SOLVER=" + std::string(solver) + "\n0.25,1.,1e-6,1.\n";
   } else {
-    deck += "*STEP\n*STATIC, SOLVER=SPOOLES\n";
+    deck += "*STEP\n*STATIC, SOLVER=" + std::string(solver) + "\n";
   }
   deck += "*DLOAD\nEALL,GRAV," + deck_number(spec.gravity) + ",0.,0.,-1.\n";
   // .dat output: one fixed-format block per converged increment
@@ -352,8 +363,10 @@ BeamResult compute(const BeamReferenceSpec& spec) {
 
   // work folder, cleared of the outputs of an earlier run so a failed run
   // can never be mistaken for a good one
-  const fs::path work_dir(spec.work_dir);
   std::error_code ec;
+  // absolute, so the shell's cd can never take it for an option
+  const fs::path work_dir = fs::absolute(fs::path(spec.work_dir), ec);
+  if (ec) return fail("calculix beam: bad work_dir " + spec.work_dir + ": " + ec.message());
   fs::create_directories(work_dir, ec);
   if (ec || !fs::is_directory(work_dir)) {
     return fail("calculix beam: cannot create work_dir " + work_dir.string() + ": " +
@@ -374,8 +387,8 @@ BeamResult compute(const BeamReferenceSpec& spec) {
     if (!inp) return fail("calculix beam: error writing " + inp_path.string());
   }
 
-  // OMP_NUM_THREADS drives ccx's threaded assembly and SPOOLES; this machine
-  // class has two cores
+  // OMP_NUM_THREADS sets ccx's threads for assembly and SPOOLES (4.1 s with
+  // one, 3.4 s with two at 32x8x8); the project's machines have two cores
   const std::string command = "cd " + shell_quote(work_dir.string()) + " && OMP_NUM_THREADS=2 ccx -i " + kJobName +
                               " </dev/null >" + kLogName + " 2>&1";
   const int status = std::system(command.c_str());
