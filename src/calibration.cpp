@@ -96,12 +96,15 @@ Result<CellCalibration> calibrate_cell(CellModel model, const Material& material
       break;
   }
   if (springs.edge.minCoeff() <= 0.0) {
+    Eigen::Index axis = 0;
+    springs.edge.minCoeff(&axis);
     std::ostringstream message;
     message << "cell size " << cell_size.x() << " x " << cell_size.y() << " x " << cell_size.z()
-            << " m (aspect ratio " << cell_size.maxCoeff() / cell_size.minCoeff()
-            << ") gives an edge stiffness <= 0 at nu = " << material.poisson_ratio
-            << "; the " << cell_model_name(model) << " model needs an aspect ratio below about "
-            << aspect_ratio_limit(material) << " at this nu";
+            << " m (aspect ratio " << cell_size.maxCoeff() / cell_size.minCoeff() << ") gives the "
+            << "xyz"[axis] << "-edges a stiffness of " << springs.edge[axis] << " N/m <= 0 at nu = "
+            << material.poisson_ratio << "; with the " << cell_model_name(model)
+            << " model a cell elongated along one axis needs an aspect ratio below about "
+            << aspect_ratio_limit(material) << " at this nu (docs/model-baudet2007.md section 4)";
     return Status::error(message.str());
   }
   CellCalibration calibration;

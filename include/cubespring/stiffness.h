@@ -17,8 +17,9 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 
 /// Which stiffness matrix to assemble.
 enum class StiffnessKind {
-  /// The exact Hessian of the elastic energy (tested against finite differences). Indefinite for
-  /// compressed springs and, through the correction, for nu > 1/4.
+  /// The exact Hessian of the elastic energy (tested against finite differences). Can be
+  /// indefinite: compressed springs, the correction's D (indefinite for every nu != 1/4, though
+  /// springs plus D are not), and the curvature of the inversion term.
   kExact,
   /// A positive semi-definite approximation for implicit steps (docs/model-baudet2007.md section 6):
   /// compressive geometric terms dropped and the correction's D replaced by its PSD part.
