@@ -52,6 +52,20 @@ Status Constraints::prescribe_displacement(const Model& model, int node, const E
   return prescribe_position(node, model.rest_positions.col(node) + displacement);
 }
 
+Status Constraints::prescribe_box_displacement(const Model& model, const Eigen::Vector3d& lower,
+                                               const Eigen::Vector3d& upper, const Eigen::Vector3d& displacement) {
+  const std::vector<int> nodes = model.nodes_in_box(lower, upper);
+  if (nodes.empty()) {
+    std::ostringstream message;
+    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
+    return Status::error(message.str());
+  }
+  for (int node : nodes) {
+    if (Status status = prescribe_displacement(model, node, displacement); !status) return status;
+  }
+  return {};
+}
+
 Status Constraints::release(int node) {
   if (Status status = check_index(node); !status) return status;
   driven_[node] = 0;

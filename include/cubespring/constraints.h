@@ -28,6 +28,10 @@ class Constraints {
   /// Drives a node to a position [m] or to rest plus a displacement [m].
   Status prescribe_position(int node, const Eigen::Vector3d& position);
   Status prescribe_displacement(const Model& model, int node, const Eigen::Vector3d& displacement);
+  /// Drives every node whose rest position lies in [lower, upper] [m] to rest plus a displacement
+  /// [m] (a clamp that moves); errors if no node lies in the box.
+  Status prescribe_box_displacement(const Model& model, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                                    const Eigen::Vector3d& displacement);
   /// Makes a node free again.
   Status release(int node);
 

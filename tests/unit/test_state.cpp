@@ -7,6 +7,7 @@
 
 #include "cubespring/constraints.h"
 #include "cubespring/integrator.h"
+#include "cubespring/static_solver.h"
 #include "test_support.h"
 
 namespace cubespring {
@@ -82,6 +83,20 @@ TEST(Constraints, RejectOutOfRangeNodesAndEmptyBoxes) {
   EXPECT_EQ(constraints.num_driven(), 0);
   ASSERT_TRUE(constraints.fix_box(model, {-1, -1, -1}, {1e-9, 1, 1}).ok());
   EXPECT_EQ(constraints.num_driven(), 4);
+}
+
+TEST(Constraints, MovingClampPullsABarToItsStaticLength) {
+  // a bar fixed at x = 0 and pulled by 0.1 mm at x = L: the static solve stretches it uniformly
+  const Model model = test::box_model({4, 1, 1}, test::notes_material(0.0));
+  Constraints constraints(model);
+  ASSERT_TRUE(constraints.fix_box(model, {-1, -1, -1}, {1e-9, 1, 1}).ok());
+  ASSERT_TRUE(constraints.prescribe_box_displacement(model, {0.04 - 1e-9, -1, -1}, {1, 1, 1}, {1e-4, 0, 0}).ok());
+  EXPECT_EQ(constraints.num_driven(), 8);
+  EXPECT_FALSE(constraints.prescribe_box_displacement(model, {1, 1, 1}, {2, 2, 2}, {0, 0, 0}).ok());
+  State state = rest_state(model);
+  ASSERT_TRUE(solve_static(model, constraints, Loads{}, StaticSettings{}, state).converged);
+  const int middle = model.node_at({2, 1, 1});
+  EXPECT_NEAR(state.positions(0, middle) - model.rest_positions(0, middle), 0.5e-4, 1e-9);
 }
 
 TEST(Constraints, DrivenNodesFollowTheirTarget) {

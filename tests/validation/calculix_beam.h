@@ -33,6 +33,9 @@ struct BeamReferenceSpec {
   /// true: NLGEOM with a compressible neo-Hookean material (C10 = G/2,
   /// D1 = 2/K), load ramped with automatic increments.
   bool nonlinear = false;
+  /// With nonlinear: true for the neo-Hookean law above, false for St Venant-Kirchhoff (linear
+  /// elastic constants on the Green-Lagrange strain, which is what *ELASTIC means under NLGEOM).
+  bool neo_hookean = true;
   /// Folder for the deck (beam.inp), ccx's output and its log (ccx.log);
   /// created if missing. Files of a previous run there are overwritten.
   std::string work_dir;
