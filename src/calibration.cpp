@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Spring stiffnesses and correction of one cell: docs/model-baudet2007.md, sections 2 to 4.
+// Spring stiffnesses and correction of one cell: docs/model-baudet2007.md, sections 2 to 4, and
+// docs/model-exact-bending.md section 2.
 #include <cmath>
 #include <sstream>
 
@@ -71,28 +72,72 @@ double aspect_ratio_limit(const Material& material) {
   return low;
 }
 
+// Exact-bending springs (docs/model-exact-bending.md section 2): edges beta E h, the paper's diagonals.
+SpringSet exact_bending_springs(const Material& material, double h, double edge_fraction) {
+  SpringSet springs;
+  springs.edge.setConstant(edge_fraction * material.young_modulus * h);
+  springs.diagonal = 0.75 * shear_modulus(material) * h;
+  return springs;
+}
+
+Status check_exact_bending(const ExactBendingParameters& p, const Eigen::Vector3d& cell_size) {
+  if (!std::isfinite(p.edge_fraction) || p.edge_fraction <= 0.0) {
+    std::ostringstream message;
+    message << "edge_fraction = " << p.edge_fraction << ": the exact-bending model needs a finite beta > 0";
+    return Status::error(message.str());
+  }
+  if (!std::isfinite(p.twist_factor) || p.twist_factor < 0.0) {
+    std::ostringstream message;
+    message << "twist_factor = " << p.twist_factor << ": the exact-bending model needs a finite zeta >= 0";
+    return Status::error(message.str());
+  }
+  if (cell_size.maxCoeff() - cell_size.minCoeff() > 1e-9 * cell_size.maxCoeff()) {
+    std::ostringstream message;
+    message << "cell size " << cell_size.x() << " x " << cell_size.y() << " x " << cell_size.z()
+            << " m: the exact-bending model is derived for cubic cells only; use equal sides or the "
+               "baudet2007 model";
+    return Status::error(message.str());
+  }
+  return {};
+}
+
 }  // namespace
 
 const char* cell_model_name(CellModel model) {
   switch (model) {
     case CellModel::kBaudet2007:
       return "baudet2007";
+    case CellModel::kExactBending:
+      return "exact-bending";
   }
   return "unknown";
 }
 
+Result<CellModel> parse_cell_model(const std::string& name) {
+  for (CellModel model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+    if (name == cell_model_name(model)) return model;
+  }
+  return Status::error("unknown cell model '" + name + "': expected baudet2007 or exact-bending");
+}
+
 Result<CellCalibration> calibrate_cell(CellModel model, const Material& material,
-                                       const Eigen::Vector3d& cell_size) {
+                                       const Eigen::Vector3d& cell_size, const ExactBendingParameters& parameters) {
   if (Status status = validate(material); !status) return status;
   if (!cell_size.allFinite() || cell_size.minCoeff() <= 0.0) {
     std::ostringstream message;
     message << "cell size " << cell_size.transpose() << " m: every side must be a finite number > 0";
     return Status::error(message.str());
   }
-  SpringSet springs;
+  SpringSet springs{Eigen::Vector3d::Zero(), 0.0};
+  double twist_stiffness = 0.0;
   switch (model) {
     case CellModel::kBaudet2007:
       springs = baudet_springs(material, cell_size);
+      break;
+    case CellModel::kExactBending:
+      if (Status status = check_exact_bending(parameters, cell_size); !status) return status;
+      springs = exact_bending_springs(material, cell_size.x(), parameters.edge_fraction);
+      twist_stiffness = parameters.twist_factor * shear_modulus(material);
       break;
   }
   if (springs.edge.minCoeff() <= 0.0) {
@@ -112,6 +157,7 @@ Result<CellCalibration> calibrate_cell(CellModel model, const Material& material
   calibration.diagonal_stiffness = springs.diagonal;
   calibration.correction =
       isotropic_normal_stiffness(material) - spring_normal_stiffness(springs, cell_size);
+  calibration.twist_stiffness = twist_stiffness;
   return calibration;
 }
 

@@ -130,6 +130,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
   if (Status status = check_settings(settings); !status) return status;
   LatticeDesc desc = box_lattice(settings.cells, settings.cell_size, settings.material);
   desc.model = settings.model;
+  desc.exact_bending = settings.exact_bending;
   Result<Model> built = build_model(desc);
   if (!built) return built.status();
 

@@ -17,6 +17,7 @@
 
 #include "cell_geometry.h"
 #include "force_passes.h"
+#include "twist.h"
 
 namespace cubespring {
 namespace {
@@ -86,6 +87,17 @@ void cell_pass(const Model& model, bool with_rate, [[maybe_unused]] int threads,
     }
     // the 1/4 of each mean edge vector gives 1/64 on the volume
     ws.cell_crushed[c] = edge[0].dot(edge[1].cross(edge[2])) < 64.0 * crushed_volume;
+
+    if (model.has_twist) {
+      std::array<Eigen::Vector3d, kEdgesPerCell> edges;
+      std::array<Eigen::Vector3d, kEdgesPerCell> twist;
+      for (int e = 0; e < kEdgesPerCell; ++e) {
+        edges[e] = ws.spring_vector.col(model.cell_edges[c][e]);
+        twist[e].setZero();
+      }
+      twist_energy(edges, size.x(), model.cell_twist_stiffness[c], &twist);
+      for (int e = 0; e < kEdgesPerCell; ++e) ws.cell_edge_force.col(c * kEdgesPerCell + e) = twist[e];
+    }
   }
 }
 
@@ -93,17 +105,25 @@ double spring_tension(const Model& model, const ForceWorkspace& ws, bool with_ra
   double tension = model.spring_stiffness[s] * (ws.spring_length[s] - model.spring_rest_length[s]);
   if (with_rate) tension += model.spring_damping[s] * ws.spring_rate[s];
   for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
-    const int cell_axis = model.spring_cell_axis[e];
-    tension += ws.cell_tension(cell_axis % 3, cell_axis / 3);
+    const int cell_edge = model.spring_cell_edge[e];
+    tension += ws.cell_tension((cell_edge % kEdgesPerCell) / kEdgesPerAxis, cell_edge / kEdgesPerCell);
   }
   return tension;
 }
 
-// Force on spring_nodes[s][0]; the other end gets its negative.
+// Force on spring_nodes[s][0]; the other end gets its negative. The twist term adds non-central
+// but balanced forces on the same two ends.
 Eigen::Vector3d spring_force(const Model& model, const ForceWorkspace& ws, double tension, int s) {
   const double length = ws.spring_length[s];
-  if (length <= kDegenerateLengthFraction * model.spring_rest_length[s]) return Eigen::Vector3d::Zero();
-  return (tension / length) * ws.spring_vector.col(s);
+  Eigen::Vector3d force = length > kDegenerateLengthFraction * model.spring_rest_length[s]
+                              ? Eigen::Vector3d((tension / length) * ws.spring_vector.col(s))
+                              : Eigen::Vector3d::Zero();
+  if (model.has_twist) {
+    for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
+      force += ws.cell_edge_force.col(model.spring_cell_edge[e]);
+    }
+  }
+  return force;
 }
 
 void apply_spring_forces(const Model& model, bool with_rate, int threads, ForceWorkspace& ws,
@@ -176,6 +196,7 @@ void ForceWorkspace::resize(const Model& model) {
   cell_tension.resize(3, model.num_cells());
   cell_crushed.resize(model.num_cells());
   spring_force.resize(3, model.num_springs());
+  cell_edge_force.resize(3, model.has_twist ? static_cast<Eigen::Index>(model.num_cells()) * kEdgesPerCell : 0);
 }
 
 void compute_forces(const Model& model, const State& state, const Loads& loads,
@@ -224,6 +245,14 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
       strain[axis] = sum / (kEdgesPerAxis * model.cell_size[axis]) - 1.0;
     }
     energy += 0.5 * rest_volume * strain.dot(model.cell_correction[c] * strain);
+    if (model.has_twist) {
+      std::array<Eigen::Vector3d, kEdgesPerCell> edges;
+      for (int e = 0; e < kEdgesPerCell; ++e) {
+        const auto& ends = model.spring_nodes[model.cell_edges[c][e]];
+        edges[e] = x.col(ends[1]) - x.col(ends[0]);
+      }
+      energy += twist_energy(edges, model.cell_size.x(), model.cell_twist_stiffness[c], nullptr);
+    }
     const double ratio = cell_frame(model, x, c).volume() / rest_volume;
     if (ratio < kCrushedVolumeFraction) {
       const double excess = ratio - kCrushedVolumeFraction;

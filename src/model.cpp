@@ -62,7 +62,7 @@ Status check_desc(const LatticeDesc& desc) {
 
 struct EdgeRecord {
   int node0, node1;
-  int cell, axis;
+  int cell, slot;  // slot: the edge's place in the cell's 12, axis * 4 + rank of its lower corner
   double stiffness, damping;
 };
 
@@ -95,7 +95,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
   // calibrate each material once for this cell shape
   std::vector<CellCalibration> calibrations;
   for (std::size_t m = 0; m < desc.materials.size(); ++m) {
-    Result<CellCalibration> calibration = calibrate_cell(desc.model, desc.materials[m], desc.cell_size);
+    Result<CellCalibration> calibration =
+        calibrate_cell(desc.model, desc.materials[m], desc.cell_size, desc.exact_bending);
     if (!calibration) return Status::error("material " + std::to_string(m) + ": " + calibration.message());
     calibrations.push_back(calibration.value());
   }
@@ -144,6 +145,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   model.cell_material.resize(num_cells);
   model.cell_correction.resize(num_cells);
   model.cell_inversion_stiffness.resize(num_cells);
+  model.cell_twist_stiffness.resize(num_cells);
   std::vector<EdgeRecord> edges;
   edges.reserve(static_cast<std::size_t>(num_cells) * kEdgesPerCell);
   for (int c = 0; c < num_cells; ++c) {
@@ -155,6 +157,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.cell_material[c] = m;
     model.cell_correction[c] = calibration.correction;
     model.cell_inversion_stiffness[c] = kInversionStiffnessFactor * material.young_modulus;
+    model.cell_twist_stiffness[c] = calibration.twist_stiffness;
+    model.has_twist |= calibration.twist_stiffness > 0.0;
     for (int corner = 0; corner < kCornersPerCell; ++corner) {
       const int node = model.node_at(desc.cells[source] + corner_offset(corner));
       model.cell_nodes[c][corner] = node;
@@ -162,12 +166,13 @@ Result<Model> build_model(const LatticeDesc& desc) {
       model.mass_damping[node] += material.mass_damping * material.density * volume / kCornersPerCell;
     }
     for (int axis = 0; axis < 3; ++axis) {
+      int rank = 0;
       for (int corner = 0; corner < kCornersPerCell; ++corner) {
         if (corner & (1 << axis)) continue;
         const int node0 = model.cell_nodes[c][corner];
         const int node1 = model.cell_nodes[c][corner | (1 << axis)];
         const double k = calibration.edge_stiffness[axis];
-        edges.push_back({node0, node1, c, axis, k, material.stiffness_damping * k});
+        edges.push_back({node0, node1, c, axis * kEdgesPerAxis + rank++, k, material.stiffness_damping * k});
       }
     }
   }
@@ -211,7 +216,6 @@ Result<Model> build_model(const LatticeDesc& desc) {
   model.spring_stiffness.resize(num_springs);
   model.spring_damping.resize(num_springs);
   model.spring_cell_offset.assign(num_springs + 1, 0);
-  std::vector<int> edge_slot(static_cast<std::size_t>(num_cells) * 3, 0);  // next free edge per cell axis
   for (int s = 0; s < num_springs; ++s) {
     const SpringRecord& spring = springs[s];
     model.spring_nodes[s] = {spring.node0, spring.node1};
@@ -221,11 +225,10 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.spring_damping[s] = spring.damping;
     for (std::size_t e = spring.first_edge; e < spring.first_edge + spring.edge_count; ++e) {
       const EdgeRecord& edge = edges[e];
-      model.spring_cell_axis.push_back(edge.cell * 3 + edge.axis);
-      int& slot = edge_slot[edge.cell * 3 + edge.axis];
-      model.cell_edges[edge.cell][edge.axis * kEdgesPerAxis + slot++] = s;
+      model.spring_cell_edge.push_back(edge.cell * kEdgesPerCell + edge.slot);
+      model.cell_edges[edge.cell][edge.slot] = s;
     }
-    model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_axis.size());
+    model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_edge.size());
   }
 
   // diagonals of each cell, found by their end nodes

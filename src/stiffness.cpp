@@ -13,6 +13,7 @@
 #include "cell_geometry.h"
 #include "cubespring/forces.h"
 #include "force_passes.h"
+#include "twist.h"
 
 namespace cubespring {
 namespace {
@@ -94,6 +95,66 @@ void StiffnessAssembler::add_block(SparseMatrix& matrix, int row_node, int posit
   }
 }
 
+// Twist term (docs/model-exact-bending.md section 3): W = 1/2 k h^3 sum_d w_d^2 with w_d = g_1 - g_0
+// and g = a . c / h^2 bilinear in the corners, a = sum_k alpha_k x_k, c = sum_k kappa_k x_k. Then
+// grad_k w = sum_side s (alpha_k c + kappa_k a) / h^2 and hess_km w = sum_side s (alpha_k kappa_m +
+// kappa_k alpha_m) I / h^2; the approximation keeps only the Gauss-Newton part grad w grad w^T.
+void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact, double k,
+                                   SparseMatrix& matrix) const {
+  const double h = model.cell_size.x();
+  std::array<Eigen::Vector3d, kEdgesPerCell> edges;
+  for (int e = 0; e < kEdgesPerCell; ++e) {
+    const int axis = e / kEdgesPerAxis;
+    const int rank = e % kEdgesPerAxis;
+    const int lower = ((rank >> axis) << (axis + 1)) | (rank & ((1 << axis) - 1));
+    edges[e] = x.col(model.cell_nodes[c][lower | (1 << axis)]) - x.col(model.cell_nodes[c][lower]);
+  }
+  // corner coefficients of the mean of two edges
+  const auto coefficients = [](const std::array<int, 2>& slots) {
+    std::array<double, kCornersPerCell> weights{};
+    for (int slot : slots) {
+      const int axis = slot / kEdgesPerAxis;
+      const int rank = slot % kEdgesPerAxis;
+      const int lower = ((rank >> axis) << (axis + 1)) | (rank & ((1 << axis) - 1));
+      weights[lower | (1 << axis)] += 0.5;
+      weights[lower] -= 0.5;
+    }
+    return weights;
+  };
+  const auto& faces = twist_faces();
+  for (int d = 0; d < 3; ++d) {
+    std::array<Eigen::Vector3d, kCornersPerCell> gradient;
+    gradient.fill(Eigen::Vector3d::Zero());
+    std::array<std::array<double, kCornersPerCell>, 2> alpha, kappa;
+    std::array<double, 2> gamma{};
+    for (int side = 0; side < 2; ++side) {
+      const double sign = side == 0 ? -1.0 : 1.0;
+      const FaceMeans means = face_means(faces[d][side], edges);
+      alpha[side] = coefficients(faces[d][side].a_edges);
+      kappa[side] = coefficients(faces[d][side].c_edges);
+      gamma[side] = means.a.dot(means.c) / (h * h);
+      for (int p = 0; p < kCornersPerCell; ++p) {
+        gradient[p] += sign * (alpha[side][p] * means.c + kappa[side][p] * means.a) / (h * h);
+      }
+    }
+    const double w = gamma[1] - gamma[0];
+    const double scale = k * h * h * h;
+    for (int p = 0; p < kCornersPerCell; ++p) {
+      for (int q = 0; q < kCornersPerCell; ++q) {
+        Eigen::Matrix3d block = scale * gradient[p] * gradient[q].transpose();
+        if (exact) {
+          double curvature = 0.0;
+          for (int side = 0; side < 2; ++side) {
+            curvature += (side == 0 ? -1.0 : 1.0) * (alpha[side][p] * kappa[side][q] + kappa[side][p] * alpha[side][q]);
+          }
+          block.diagonal().array() += scale * w * curvature / (h * h);
+        }
+        add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+      }
+    }
+  }
+}
+
 void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                   double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
   if (matrix.nonZeros() != pattern_.nonZeros() || matrix.rows() != pattern_.rows()) {
@@ -147,6 +208,10 @@ void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x,
         add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q],
                   left * strain_gradient[q].transpose());
       }
+    }
+
+    if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
+      add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], matrix);
     }
 
     const CellFrame frame = cell_frame(model, x, c);

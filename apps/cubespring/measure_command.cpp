@@ -25,6 +25,7 @@ struct MeasureOptions {
   double gravity = 9.81;
   std::string control = "displacement";
   std::string model = "baudet2007";
+  ExactBendingParameters exact_bending;
   bool json = false;
 };
 
@@ -52,6 +53,10 @@ nlohmann::json report_json(const ExperimentResult& r) {
                  {"gravity", s.gravity},
                  {"model", cell_model_name(s.model)}};
   if (r.experiment == Experiment::kShear) j["inputs"]["control"] = shear_control_name(s.shear_control);
+  if (s.model == CellModel::kExactBending) {
+    j["inputs"]["edge_fraction"] = s.exact_bending.edge_fraction;
+    j["inputs"]["twist_factor"] = s.exact_bending.twist_factor;
+  }
   j["measured"] = to_json(r.measured);
   j["expected"] = to_json(r.expected);
   j["error"] = to_json(r.error);
@@ -119,7 +124,8 @@ void report_table(const ExperimentResult& r) {
 std::string with_flag(const std::string& message) {
   const std::pair<const char*, const char*> flags[] = {
       {"young_modulus", "--young"}, {"poisson_ratio", "--poisson"}, {"density", "--density"},
-      {"strain", "--strain"},       {"gravity", "--gravity"},       {"cell size", "--cell-size"}};
+      {"strain", "--strain"},       {"gravity", "--gravity"},       {"cell size", "--cell-size"},
+      {"edge_fraction", "--edge-fraction"}, {"twist_factor", "--twist-factor"}};
   for (const auto& [field, flag] : flags) {
     if (message.find(field) != std::string::npos) return std::string(flag) + ": " + message;
   }
@@ -139,6 +145,8 @@ int run_measure(const MeasureOptions& o) {
   settings.strain = o.strain;
   settings.gravity = o.gravity;
   settings.shear_control = o.control == "force" ? ShearControl::kForce : ShearControl::kDisplacement;
+  settings.model = parse_cell_model(o.model).value();  // CLI11 checked the name
+  settings.exact_bending = o.exact_bending;
   const std::string default_cells = experiment.value() == Experiment::kCantilever ? "16,4,4" : "1,1,1";
   Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
   Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
@@ -183,7 +191,15 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
       ->check(CLI::IsMember({"displacement", "force"}))
       ->capture_default_str();
-  cmd->add_option("--model", options->model, "cell model")->check(CLI::IsMember({"baudet2007"}))->capture_default_str();
+  cmd->add_option("--model", options->model, "cell model: baudet2007 (the paper) or exact-bending")
+      ->check(CLI::IsMember({"baudet2007", "exact-bending"}))
+      ->capture_default_str();
+  cmd->add_option("--edge-fraction", options->exact_bending.edge_fraction,
+                  "exact-bending: edge stiffness as a fraction beta of E h")
+      ->capture_default_str();
+  cmd->add_option("--twist-factor", options->exact_bending.twist_factor,
+                  "exact-bending: twist stiffness as a fraction zeta of G")
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "print one JSON object on stdout");
   return [options] { return run_measure(*options); };
 }

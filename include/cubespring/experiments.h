@@ -34,6 +34,7 @@ const char* shear_control_name(ShearControl control);
 struct ExperimentSettings {
   Material material;
   CellModel model = CellModel::kBaudet2007;
+  ExactBendingParameters exact_bending;           ///< used when model is kExactBending
   Eigen::Vector3i cells{1, 1, 1};                 ///< block size in cells
   Eigen::Vector3d cell_size{0.01, 0.01, 0.01};    ///< [m]
   /// Load size as the continuum strain it causes [-]: sigma = E S (elongation), gamma = S (shear),

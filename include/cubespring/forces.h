@@ -34,6 +34,7 @@ struct ForceWorkspace {
   Eigen::Matrix3Xd cell_tension;          ///< correction tension on each axis' edges [N]
   std::vector<std::uint8_t> cell_crushed; ///< 1 where the inversion recovery acts
   Eigen::Matrix3Xd spring_force;          ///< force on spring_nodes[s][0] [N] (gather pass)
+  Eigen::Matrix3Xd cell_edge_force;       ///< twist force on each cell edge's lower node [N]
   void resize(const Model& model);
 };
 

@@ -2,22 +2,39 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "cubespring/material.h"
+#include "cubespring/result.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
 namespace cubespring {
 
 /// Which calibrated cell model turns a material into springs and correction forces.
 enum class CellModel {
-  kBaudet2007,  ///< Baudet, Beuve, Jaillet, Shariat, Zara (2007): 12 edge + 4 body-diagonal springs
-                ///< plus the mean-strain correction of docs/model-baudet2007.md.
+  kBaudet2007,    ///< Baudet, Beuve, Jaillet, Shariat, Zara (2007): 12 edge + 4 body-diagonal springs
+                  ///< plus the mean-strain correction of docs/model-baudet2007.md.
+  kExactBending,  ///< the same springs with edge stiffness beta E h, the correction recomputed so
+                  ///< that E, nu, B, G stay exact, and a twist term against the zero-energy modes
+                  ///< (docs/model-exact-bending.md). Cubic cells only.
 };
-/// The name used in command-line flags and JSON output ("baudet2007").
+/// The name used in command-line flags and JSON output ("baudet2007", "exact-bending").
 const char* cell_model_name(CellModel model);
+/// The model of a name, or an error listing the names.
+Result<CellModel> parse_cell_model(const std::string& name);
+
+/// The two parameters of the exact-bending model (docs/model-exact-bending.md).
+struct ExactBendingParameters {
+  /// beta: per-cell edge stiffness as a fraction of E h [-], > 0. 1/12 makes a cell's bending
+  /// energy exact; 0.07 (the default) also absorbs the coarse mesh's error in cantilevers.
+  double edge_fraction = 0.07;
+  /// zeta: twist stiffness as a fraction of G [-], >= 0; 1/12 is the continuum energy of the
+  /// twist mode. 0 leaves the three checkerboard zero-energy modes.
+  double twist_factor = 1.0 / 12.0;
+};
 
 /// A body as a set of occupied cells of a regular grid. Cells that touch share nodes.
 struct LatticeDesc {
@@ -27,6 +44,7 @@ struct LatticeDesc {
   std::vector<Material> materials{Material{}};  ///< Materials; cells refer to them by index.
   std::vector<int> cell_material;               ///< Material index per cell; empty means all 0.
   CellModel model = CellModel::kBaudet2007;
+  ExactBendingParameters exact_bending;  ///< used by CellModel::kExactBending
 };
 
 /// A box of counts.x() x counts.y() x counts.z() cells spanning

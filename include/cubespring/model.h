@@ -16,7 +16,8 @@ namespace cubespring {
 
 /// Corner c of a cell sits at offset (c & 1, (c >> 1) & 1, (c >> 2) & 1) cells from its first corner.
 /// Edges along axis a join corner c (bit a clear) to c | (1 << a); the 12 edges of a cell are stored
-/// axis by axis: x edges 0-3, y edges 4-7, z edges 8-11.
+/// axis by axis (x edges 0-3, y edges 4-7, z edges 8-11), within an axis in ascending order of
+/// their lower corner c.
 inline constexpr int kCornersPerCell = 8;
 inline constexpr int kEdgesPerCell = 12;
 inline constexpr int kEdgesPerAxis = 4;
@@ -41,9 +42,9 @@ struct Model {
   std::vector<double> spring_stiffness;    ///< [N/m], summed over the cells that share the spring
   std::vector<double> spring_damping;      ///< beta times stiffness, summed over cells [N s/m]
   /// Cells whose correction acts on spring s: entries spring_cell_offset[s] .. [s+1]-1 of
-  /// spring_cell_axis, each cell * 3 + axis (edges only; diagonals have none).
+  /// spring_cell_edge, each cell * 12 + the edge's slot in that cell (edges only; diagonals have none).
   std::vector<int> spring_cell_offset;
-  std::vector<int> spring_cell_axis;
+  std::vector<int> spring_cell_edge;
 
   // cells (num_cells)
   std::vector<Eigen::Vector3i> cell_grid_index;
@@ -54,6 +55,10 @@ struct Model {
   /// 1/2 V0 eps^T D eps with eps the mean edge strains (docs/model-baudet2007.md, section 3).
   std::vector<Eigen::Matrix3d> cell_correction;
   std::vector<double> cell_inversion_stiffness;  ///< [Pa], see docs/model-baudet2007.md section 5
+  /// Twist stiffness zeta G [Pa] of each cell (exact-bending model, docs/model-exact-bending.md);
+  /// zero for the paper's model.
+  std::vector<double> cell_twist_stiffness;
+  bool has_twist = false;  ///< some cell has a twist term
 
   /// Springs are sorted by their first node: those with spring_nodes[s][0] == n are
   /// node_first_spring[n] .. node_first_spring[n+1]-1 (num_nodes + 1 entries).
@@ -94,8 +99,10 @@ struct CellCalibration {
   Eigen::Vector3d edge_stiffness;  ///< per-cell share of each edge along x, y, z [N/m]
   double diagonal_stiffness = 0;   ///< each of the 4 body diagonals [N/m]
   Eigen::Matrix3d correction;      ///< D [Pa]
+  double twist_stiffness = 0;      ///< zeta G [Pa]; 0 for the paper's model
 };
 Result<CellCalibration> calibrate_cell(CellModel model, const Material& material,
-                                       const Eigen::Vector3d& cell_size);
+                                       const Eigen::Vector3d& cell_size,
+                                       const ExactBendingParameters& parameters = {});
 
 }  // namespace cubespring

@@ -42,6 +42,8 @@ class StiffnessAssembler {
 
  private:
   void add_block(SparseMatrix& matrix, int row_node, int position, const Eigen::Matrix3d& block) const;
+  void add_twist(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness,
+                 SparseMatrix& matrix) const;
 
   SparseMatrix pattern_;
   std::vector<int> diagonal_position_;                    // per node: own position in its row
