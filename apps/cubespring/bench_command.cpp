@@ -85,10 +85,23 @@ struct Row {
   std::string name;
   int cells = 0, nodes = 0, springs = 0;
   double bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
+  double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
   int implicit_iterations = 0;
 };
 
-Row bench_body(const std::string& name, const LatticeDesc& desc, const BenchOptions& o) {
+// Time per symplectic Euler step [s] of a body under clamp and gravity.
+double explicit_step_time(const Model& model, const Constraints& clamp, const Loads& loads, const State& start,
+                          Integrator integrator, int threads, double min_seconds) {
+  StepSettings settings;
+  settings.integrator = integrator;
+  settings.threads = threads;
+  settings.time_step = 0.5 * max_stable_time_step(model);
+  State state = start;
+  Stepper stepper(model);
+  return time_per_call(min_seconds, [&] { (void)stepper.step(model, clamp, loads, settings, state); });
+}
+
+Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o) {
   Result<Model> built = build_model(desc);
   if (!built) throw std::runtime_error(built.message());
   const Model& model = built.value();
@@ -110,18 +123,15 @@ Row bench_body(const std::string& name, const LatticeDesc& desc, const BenchOpti
   Eigen::Matrix3Xd forces(3, model.num_nodes());
   row.bare = time_per_call(o.min_seconds, [&] { bare_spring_pass(model, start.positions, forces); });
 
-  const auto explicit_time = [&](Integrator integrator, int threads) {
-    StepSettings settings;
-    settings.integrator = integrator;
-    settings.threads = threads;
-    settings.time_step = 0.5 * max_stable_time_step(model);
-    State state = start;
-    Stepper stepper(model);
-    return time_per_call(o.min_seconds, [&] { (void)stepper.step(model, clamp, loads, settings, state); });
-  };
-  row.symplectic1 = explicit_time(Integrator::kSymplecticEuler, 1);
-  row.symplectic2 = explicit_time(Integrator::kSymplecticEuler, 2);
-  row.verlet1 = explicit_time(Integrator::kVelocityVerlet, 1);
+  row.symplectic1 = explicit_step_time(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, o.min_seconds);
+  row.symplectic2 = explicit_step_time(model, clamp, loads, start, Integrator::kSymplecticEuler, 2, o.min_seconds);
+  row.verlet1 = explicit_step_time(model, clamp, loads, start, Integrator::kVelocityVerlet, 1, o.min_seconds);
+  // the same lattice with the exact-bending model, for the cost ratio of the two models
+  desc.model = CellModel::kExactBending;
+  Result<Model> exact = build_model(desc);
+  if (!exact) throw std::runtime_error(exact.message());
+  row.exact_bending1 =
+      explicit_step_time(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1, o.min_seconds);
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
     StepSettings settings;
@@ -178,6 +188,7 @@ int run_bench(const BenchOptions& o) {
       out.push_back({{"body", r.name}, {"cells", r.cells}, {"nodes", r.nodes}, {"springs", r.springs},
                      {"bare_spring_pass_ms", 1e3 * r.bare}, {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
                      {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}}},
+                     {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
                      {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
                      {"implicit_cg_iterations", r.implicit_iterations},
                      {"implicit_wall_per_simulated_second_s", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
@@ -186,13 +197,14 @@ int run_bench(const BenchOptions& o) {
     return 0;
   }
   std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (mean over >= %.1f s)\n", o.min_seconds);
-  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %7s %9s | %9s %9s %7s | %10s %5s %10s\n", "body", "cells", "nodes",
-              "springs", "bare", "symp 1t", "symp 2t", "2t gain", "full/bare", "Gspring/s", "verlet 1t", "", "implicit",
-              "CG it", "s/sim s");
+  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %7s %9s | %9s %9s %9s %7s | %10s %5s %10s\n", "body", "cells", "nodes",
+              "springs", "bare", "symp 1t", "symp 2t", "2t gain", "full/bare", "Gspring/s", "verlet 1t", "exact 1t",
+              "exact/pap", "implicit", "CG it", "s/sim s");
   for (const Row& r : rows) {
-    std::printf("%-12s %8d %9d %9d | %9.4f %9.4f %9.4f %7.2f %9.2f | %9.3f %9.4f %7s |", r.name.c_str(), r.cells, r.nodes,
-                r.springs, 1e3 * r.bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2, r.symplectic1 / r.symplectic2,
-                r.symplectic1 / r.bare, 1e-9 * r.springs / r.bare, 1e3 * r.verlet1, "");
+    std::printf("%-12s %8d %9d %9d | %9.4f %9.4f %9.4f %7.2f %9.2f | %9.3f %9.4f %9.4f %7.2f |", r.name.c_str(), r.cells,
+                r.nodes, r.springs, 1e3 * r.bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2, r.symplectic1 / r.symplectic2,
+                r.symplectic1 / r.bare, 1e-9 * r.springs / r.bare, 1e3 * r.verlet1, 1e3 * r.exact_bending1,
+                r.exact_bending1 / r.symplectic1);
     if (r.implicit_step > 0) {
       std::printf(" %10.3f %5d %10.2f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3);
     } else {
@@ -201,6 +213,7 @@ int run_bench(const BenchOptions& o) {
   }
   std::printf("bare: one linear spring-force pass (the floor); symp: full symplectic Euler step (springs, correction,\n"
               "inversion check, damping, integration); full/bare: 1-thread step over bare pass; Gspring/s: bare pass;\n"
+              "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
               "implicit: dt = 1 ms, CG to 1e-6; s/sim s: wall seconds per simulated second.\n");
   return 0;
 }

@@ -82,6 +82,20 @@ TEST(Cli, CantileverReportsTipAndEveryNode) {
   EXPECT_LT(j["expected"]["timoshenko"].get<double>(), j["expected"]["euler_bernoulli"].get<double>());
 }
 
+TEST(Cli, ExactBendingModelIsSelectableAndNamed) {
+  const nlohmann::json j = run_json("measure elongation --model exact-bending --poisson 0.45");
+  EXPECT_EQ(j["inputs"]["model"], "exact-bending");
+  EXPECT_DOUBLE_EQ(j["inputs"]["edge_fraction"].get<double>(), 0.07);
+  EXPECT_NEAR(j["error"]["young_modulus"].get<double>(), 0.0, 1e-3);
+  const nlohmann::json beam = run_json("measure cantilever --model exact-bending --edge-fraction 0.08333333333333333");
+  const nlohmann::json paper = run_json("measure cantilever");
+  // exact cell bending sags more than the paper's stiff edges
+  EXPECT_LT(beam["tip_deflection"].get<double>(), 1.05 * paper["tip_deflection"].get<double>());
+  const ToolRun bad = run_tool("measure cantilever --model exact-bending --cell-size 0.01,0.01,0.012");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("cubic cells only"), std::string::npos) << bad.out;
+}
+
 TEST(Cli, TableWithoutJson) {
   const ToolRun run = run_tool("measure elongation");
   EXPECT_EQ(run.exit_code, 0);
@@ -111,6 +125,8 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgument{"measure elongation --cell-size -0.01", "--cell-size"},
                       BadArgument{"measure cantilever --cells 16,4", "--cells"},
                       BadArgument{"measure shear --control torque", "--control"},
-                      BadArgument{"measure elongation --young abc", "--young"}));
+                      BadArgument{"measure elongation --young abc", "--young"},
+                      BadArgument{"measure elongation --model tetra", "--model"},
+                      BadArgument{"measure elongation --model exact-bending --edge-fraction 0", "--edge-fraction"}));
 
 }  // namespace
