@@ -18,7 +18,9 @@
 namespace cubespring {
 namespace {
 
+using test::dense_stiffness;
 using test::notes_material;
+using test::zero_modes;
 
 Model exact_model(const Eigen::Vector3i& cells, const Material& material, ExactBendingParameters p = {}) {
   LatticeDesc desc = box_lattice(cells, Eigen::Vector3d::Constant(0.01), material);
@@ -102,20 +104,6 @@ TEST(ExactBending, TwistTermSeesOnlyTheTwistModes) {
       EXPECT_NEAR(twist_energy_of(with, without, y), 0.0, 1e-12 * scale) << a << " " << b;
     }
   }
-}
-
-Eigen::MatrixXd dense_stiffness(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind) {
-  StiffnessAssembler assembler(model);
-  SparseMatrix k;
-  assembler.assemble(model, x, kind, 1.0, 0.0, k);
-  return Eigen::MatrixXd(k);
-}
-
-int zero_modes(const Model& model) {
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense_stiffness(model, model.rest_positions, StiffnessKind::kExact));
-  const Eigen::VectorXd& values = solver.eigenvalues();
-  EXPECT_GT(values.minCoeff(), -1e-9 * values.maxCoeff());
-  return static_cast<int>((values.array().abs() < 1e-9 * values.maxCoeff()).count());
 }
 
 TEST(ExactBending, FreeBlocksHaveOnlyTheSixRigidZeroModes) {

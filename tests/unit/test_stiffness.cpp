@@ -11,12 +11,8 @@
 namespace cubespring {
 namespace {
 
-Eigen::MatrixXd dense_stiffness(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind) {
-  StiffnessAssembler assembler(model);
-  SparseMatrix k;
-  assembler.assemble(model, x, kind, 1.0, 0.0, k);
-  return Eigen::MatrixXd(k);
-}
+using test::dense_stiffness;
+using test::zero_modes;
 
 Eigen::MatrixXd finite_difference_stiffness(const Model& model, const Eigen::Matrix3Xd& x) {
   const double step = 1e-7;
@@ -62,14 +58,6 @@ TEST(Stiffness, ApproximationIsPositiveSemiDefinite) {
   EXPECT_GT(solver.eigenvalues().minCoeff(), -1e-9 * solver.eigenvalues().maxCoeff());
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> exact(dense_stiffness(model, x, StiffnessKind::kExact));
   EXPECT_LT(exact.eigenvalues().minCoeff(), -1e-6 * exact.eigenvalues().maxCoeff());
-}
-
-// Count eigenvalues below a relative threshold of the free body's stiffness at rest.
-int zero_modes(const Model& model) {
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense_stiffness(model, model.rest_positions, StiffnessKind::kExact));
-  const Eigen::VectorXd& values = solver.eigenvalues();
-  EXPECT_GT(values.minCoeff(), -1e-9 * values.maxCoeff());
-  return static_cast<int>((values.array().abs() < 1e-9 * values.maxCoeff()).count());
 }
 
 TEST(Stiffness, FreeBlocksHaveSixRigidAndThreeCheckerboardZeroModes) {

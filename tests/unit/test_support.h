@@ -5,11 +5,14 @@
 
 #include <random>
 
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
 #include "cubespring/forces.h"
 #include "cubespring/model.h"
 #include "cubespring/state.h"
+#include "cubespring/stiffness.h"
 
 namespace cubespring::test {
 
@@ -47,6 +50,23 @@ inline Eigen::Matrix3Xd elastic_forces(const Model& model, const Eigen::Matrix3X
   Eigen::Matrix3Xd forces;
   compute_forces(model, state, Loads{}, ForceOptions{false, 1}, ws, forces);
   return forces;
+}
+
+/// The assembled stiffness at positions x as a dense matrix (small bodies only).
+inline Eigen::MatrixXd dense_stiffness(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind) {
+  StiffnessAssembler assembler(model);
+  SparseMatrix k;
+  assembler.assemble(model, x, kind, 1.0, 0.0, k);
+  return Eigen::MatrixXd(k);
+}
+
+/// Zero eigenvalues (below 1e-9 of the largest) of a free body's stiffness at rest; fails the test
+/// if any eigenvalue is clearly negative.
+inline int zero_modes(const Model& model) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense_stiffness(model, model.rest_positions, StiffnessKind::kExact));
+  const Eigen::VectorXd& values = solver.eigenvalues();
+  EXPECT_GT(values.minCoeff(), -1e-9 * values.maxCoeff());
+  return static_cast<int>((values.array().abs() < 1e-9 * values.maxCoeff()).count());
 }
 
 }  // namespace cubespring::test
