@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -47,34 +48,37 @@ inline const std::array<std::array<TwistFace, 2>, 3>& twist_faces() {
   return faces;
 }
 
-/// Mean a- and c-edge vectors of a face.
+/// Mean a- and c-edge vectors of a face; edge(slot) gives an edge vector.
 struct FaceMeans {
   Eigen::Vector3d a, c;
 };
+template <typename EdgeFn>
+FaceMeans face_means(const TwistFace& face, const EdgeFn& edge) {
+  return {0.5 * (edge(face.a_edges[0]) + edge(face.a_edges[1])), 0.5 * (edge(face.c_edges[0]) + edge(face.c_edges[1]))};
+}
 inline FaceMeans face_means(const TwistFace& face, const std::array<Eigen::Vector3d, kEdgesPerCell>& edges) {
-  return {0.5 * (edges[face.a_edges[0]] + edges[face.a_edges[1]]), 0.5 * (edges[face.c_edges[0]] + edges[face.c_edges[1]])};
+  return face_means(face, [&](int slot) -> const Eigen::Vector3d& { return edges[slot]; });
 }
 
-/// Twist energy [J] of a cubic cell of side h [m] and stiffness k [Pa] from its 12 edge vectors
-/// (x of the upper corner minus x of the lower); when forces is not null, adds to each edge the
-/// force on its lower corner [N] (the upper corner gets the negative).
-inline double twist_energy(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges, double h, double k,
-                           std::array<Eigen::Vector3d, kEdgesPerCell>* forces) {
+/// Twist energy [J] of a cubic cell of side h [m] and stiffness k [Pa]; edge(slot) gives each edge
+/// vector (x of the upper corner minus x of the lower), and add_force(slot, f) receives the force
+/// on that edge's lower corner [N] (the upper corner gets the negative).
+template <typename EdgeFn, typename ForceFn>
+double twist_energy(const EdgeFn& edge, double h, double k, const ForceFn& add_force) {
   const auto& faces = twist_faces();
   double energy = 0.0;
   for (int d = 0; d < 3; ++d) {
-    const FaceMeans lower = face_means(faces[d][0], edges);
-    const FaceMeans upper = face_means(faces[d][1], edges);
+    const FaceMeans lower = face_means(faces[d][0], edge);
+    const FaceMeans upper = face_means(faces[d][1], edge);
     const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
     energy += 0.5 * k * h * h * h * w * w;
-    if (forces == nullptr) continue;
     // dW/d(edge) = +-k h w / 2 times the other mean on that face
     for (int side = 0; side < 2; ++side) {
       const FaceMeans& means = side == 0 ? lower : upper;
       const double coefficient = (side == 0 ? -0.5 : 0.5) * k * h * w;
       for (int t = 0; t < 2; ++t) {
-        (*forces)[faces[d][side].a_edges[t]] += coefficient * means.c;
-        (*forces)[faces[d][side].c_edges[t]] += coefficient * means.a;
+        add_force(faces[d][side].a_edges[t], coefficient * means.c);
+        add_force(faces[d][side].c_edges[t], coefficient * means.a);
       }
     }
   }
