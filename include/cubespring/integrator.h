@@ -51,7 +51,8 @@ struct StepReport {
 };
 
 /// Advances a body's state by one time step. Keeps the scratch arrays of its integrator between
-/// steps, so stepping allocates nothing after the first step. One stepper per body.
+/// steps, so an explicit step allocates nothing after the first one (an implicit step assembles
+/// into a kept sparsity pattern but allocates its CG vectors). One stepper per body.
 class Stepper {
  public:
   explicit Stepper(const Model& model);
