@@ -13,6 +13,8 @@
 
 #include <Eigen/Core>
 
+#include "calculix_common.h"  // calculix_available()
+
 namespace cubespring::validation {
 
 /// What to solve: a box clamped at x = 0, loaded by its own weight along -z.
@@ -76,7 +78,5 @@ struct BeamResult {
 /// back as an error.
 BeamResult compute_beam_reference(const BeamReferenceSpec& spec);
 
-/// True when an executable `ccx` is on PATH.
-bool calculix_available();
 
 }  // namespace cubespring::validation

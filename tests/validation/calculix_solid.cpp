@@ -4,167 +4,19 @@
 #include "calculix_solid.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <deque>
 #include <exception>
-#include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
-#include <system_error>
 #include <utility>
 
-#include "calculix_beam.h"  // calculix_available()
-
-#if __has_include(<sys/wait.h>)
-#include <sys/wait.h>
-#endif
+#include "calculix_common.h"
 
 namespace cubespring::validation {
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr const char* kJobName = "solid";
-constexpr const char* kLogName = "ccx.log";
-constexpr int kLogTailLines = 12;
 constexpr int kMaxElementsPerCell = 64;
 constexpr int kMaxCellIndex = 1000000;
-
-// ---- helpers mirroring calculix_beam.cpp (private there; keep in step) ----
-
-// C3D20(R) node order on the doubled grid (0, 1, 2 per axis), as in
-// CalculiX's shape20h.f: corners 1-8, mid-edges 9-20.
-constexpr std::array<std::array<int, 3>, 20> kBrickNodes{{
-    {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0},
-    {0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2},
-    {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0},
-    {1, 0, 2}, {2, 1, 2}, {1, 2, 2}, {0, 1, 2},
-    {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1},
-}};
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (char ch : text) {
-    if (ch == '\'') {
-      quoted += "'\\''";
-    } else {
-      quoted += ch;
-    }
-  }
-  return quoted + "'";
-}
-
-std::string format_double(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.9g", value);
-  return buffer;
-}
-
-// ccx reads numeric fields through their first 20 characters (f20.0);
-// %.13g never exceeds 20.
-std::string deck_number(double value) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof(buffer), "%.13g", value);
-  return buffer;
-}
-
-// Fortran drops the 'E' of three-digit exponents ("1.234567-100").
-bool parse_fortran_double(const std::string& token, double& value) {
-  if (token.empty()) return false;
-  const char* begin = token.c_str();
-  char* end = nullptr;
-  value = std::strtod(begin, &end);
-  if (end == begin) return false;
-  if (*end == '\0') return true;
-  if (*end == '-' || *end == '+') {
-    char* exponent_end = nullptr;
-    const long exponent = std::strtol(end, &exponent_end, 10);
-    if (exponent_end != end + 1 && *exponent_end == '\0') {
-      value *= std::pow(10.0, static_cast<double>(exponent));
-      return true;
-    }
-  }
-  return false;
-}
-
-std::string read_log_tail(const fs::path& log_path) {
-  std::ifstream log(log_path);
-  if (!log) return "(no log at " + log_path.string() + ")";
-  std::deque<std::string> tail;
-  std::string line;
-  while (std::getline(log, line)) {
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    tail.push_back(line);
-    if (static_cast<int>(tail.size()) > kLogTailLines) tail.pop_front();
-  }
-  if (tail.empty()) return "(log " + log_path.string() + " is empty)";
-  std::string text;
-  for (const auto& kept : tail) text += "\n  " + kept;
-  return text;
-}
-
-// Last "displacements (vx,vy,vz) for set NCORNER and time T" block of the
-// .dat file; node ids 1..corner_count.
-std::string parse_dat(const fs::path& dat_path, int corner_count, std::vector<Eigen::Vector3d>& displacement,
-                      double& time) {
-  std::ifstream dat(dat_path);
-  if (!dat) return "cannot open ccx output " + dat_path.string();
-  const auto count = static_cast<std::size_t>(corner_count);
-  std::vector<Eigen::Vector3d> block;
-  std::vector<char> seen;
-  bool in_block = false;
-  bool found = false;
-  std::string line;
-  int line_number = 0;
-  while (std::getline(dat, line)) {
-    ++line_number;
-    const std::string where = dat_path.string() + ":" + std::to_string(line_number) + ": ";
-    if (line.find("displacements (vx,vy,vz) for set NCORNER") != std::string::npos) {
-      const std::size_t at = line.find("time");
-      if (at == std::string::npos) return where + "no time in header";
-      std::istringstream header(line.substr(at + 4));
-      std::string token;
-      header >> token;
-      if (!parse_fortran_double(token, time)) return where + "unreadable time '" + token + "'";
-      block.assign(count, Eigen::Vector3d::Constant(NAN));
-      seen.assign(count, 0);
-      in_block = true;
-      found = true;
-      continue;
-    }
-    if (!in_block) continue;
-    std::istringstream fields(line);
-    std::string tokens[5];
-    int fields_read = 0;
-    while (fields_read < 5 && fields >> tokens[fields_read]) ++fields_read;
-    if (fields_read == 0) continue;  // blank lines surround the data
-    if (fields_read != 4) {
-      in_block = false;
-      continue;
-    }
-    char* end = nullptr;
-    const long node = std::strtol(tokens[0].c_str(), &end, 10);
-    Eigen::Vector3d u;
-    if (*end != '\0' || !parse_fortran_double(tokens[1], u.x()) || !parse_fortran_double(tokens[2], u.y()) ||
-        !parse_fortran_double(tokens[3], u.z())) {
-      return where + "unreadable displacement line '" + line + "'";
-    }
-    if (node < 1 || node > corner_count) return where + "node " + std::to_string(node) + " is not a corner node";
-    block[static_cast<std::size_t>(node - 1)] = u;
-    seen[static_cast<std::size_t>(node - 1)] = 1;
-  }
-  if (!found) return dat_path.string() + ": no displacement block for set NCORNER";
-  for (std::size_t node = 0; node < count; ++node) {
-    if (!seen[node]) return dat_path.string() + ": last displacement block lacks node " + std::to_string(node + 1);
-    if (!block[node].allFinite()) {
-      return dat_path.string() + ": non-finite displacement at node " + std::to_string(node + 1);
-    }
-  }
-  displacement = std::move(block);
-  return {};
-}
 
 // ---- solid mesh ----
 
@@ -466,55 +318,9 @@ SolidResult compute(const SolidReferenceSpec& spec) {
   std::string deck;
   if (std::string problem = build_deck(spec, mesh, deck); !problem.empty()) return fail(problem);
 
-  std::error_code ec;
-  const fs::path work_dir = fs::absolute(fs::path(spec.work_dir), ec);
-  if (ec) return fail("bad work_dir " + spec.work_dir + ": " + ec.message());
-  fs::create_directories(work_dir, ec);
-  if (ec || !fs::is_directory(work_dir)) {
-    return fail("cannot create work_dir " + work_dir.string() + ": " +
-                (ec ? ec.message() : std::string("not a directory")));
-  }
-  const fs::path inp_path = work_dir / (std::string(kJobName) + ".inp");
-  const fs::path dat_path = work_dir / (std::string(kJobName) + ".dat");
-  const fs::path log_path = work_dir / kLogName;
-  fs::remove(dat_path, ec);
-  fs::remove(log_path, ec);
-  {
-    std::ofstream inp(inp_path, std::ios::binary | std::ios::trunc);
-    if (!inp) return fail("cannot write " + inp_path.string());
-    inp << deck;
-    inp.close();
-    if (!inp) return fail("error writing " + inp_path.string());
-  }
-
-  const std::string command = "cd " + shell_quote(work_dir.string()) + " && OMP_NUM_THREADS=2 ccx -i " + kJobName +
-                              " </dev/null >" + kLogName + " 2>&1";
-  const int status = std::system(command.c_str());
-  if (status != 0) {
-    std::string how = "status " + std::to_string(status);
-#if __has_include(<sys/wait.h>)
-    if (status == -1) {
-      how = "could not start a shell";
-    } else if (WIFEXITED(status)) {
-      how = "exit code " + std::to_string(WEXITSTATUS(status));
-    } else if (WIFSIGNALED(status)) {
-      how = "signal " + std::to_string(WTERMSIG(status));
-    }
-#endif
-    return fail("ccx failed (" + how + ") in " + work_dir.string() + "; last lines of " + log_path.string() + ":" +
-                read_log_tail(log_path));
-  }
-
-  std::vector<Eigen::Vector3d> displacement;
-  double time = NAN;
-  if (std::string problem = parse_dat(dat_path, mesh.corner_count, displacement, time); !problem.empty()) {
-    return fail(problem + "; last lines of " + log_path.string() + ":" + read_log_tail(log_path));
-  }
-  if (!(std::abs(time - 1.0) < 1e-6)) {
-    return fail("last displacement block in " + dat_path.string() + " is at time " + format_double(time) +
-                ", not at the end of the step (1); last lines of " + log_path.string() + ":" +
-                read_log_tail(log_path));
-  }
+  CcxResult run = run_ccx(spec.work_dir, kJobName, deck, mesh.corner_count);
+  if (!run.error.empty()) return fail(run.error);
+  const std::vector<Eigen::Vector3d>& displacement = run.corner_displacement;
 
   SolidReference reference;
   reference.cell_size = spec.cell_size;

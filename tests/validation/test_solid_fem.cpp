@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "calculix_beam.h"
+#include "calculix_common.h"
 #include "calculix_solid.h"
 #include "cubespring/constraints.h"
 #include "cubespring/static_solver.h"
