@@ -89,20 +89,22 @@ void cell_pass(const Model& model, bool with_rate, [[maybe_unused]] int threads,
     ws.cell_crushed[c] = edge[0].dot(edge[1].cross(edge[2])) < 64.0 * crushed_volume;
 
     if (model.has_twist) {
+      std::array<Eigen::Vector3d, kEdgesPerCell> edges;
+      for (int e = 0; e < kEdgesPerCell; ++e) edges[e] = ws.spring_vector.col(model.cell_edges[c][e]);
       auto out = ws.cell_edge_force.middleCols<kEdgesPerCell>(static_cast<Eigen::Index>(c) * kEdgesPerCell);
       out.setZero();
-      twist_energy([&](int slot) { return ws.spring_vector.col(model.cell_edges[c][slot]); }, size.x(),
-                   model.cell_twist_stiffness[c], [&](int slot, const Eigen::Vector3d& f) { out.col(slot) += f; });
+      twist_energy(edges, size.x(), model.cell_twist_stiffness[c],
+                   [&](int slot, const Eigen::Vector3d& f) { out.col(slot) += f; });
     }
   }
 }
 
-double spring_tension(const Model& model, const ForceWorkspace& ws, bool with_rate, int s) {
+inline double spring_tension(const Model& model, const ForceWorkspace& ws, bool with_rate, int s) {
   double tension = model.spring_stiffness[s] * (ws.spring_length[s] - model.spring_rest_length[s]);
   if (with_rate) tension += model.spring_damping[s] * ws.spring_rate[s];
+  const double* cell_tension = ws.cell_tension.data();
   for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
-    const int cell_edge = model.spring_cell_edge[e];
-    tension += ws.cell_tension((cell_edge % kEdgesPerCell) / kEdgesPerAxis, cell_edge / kEdgesPerCell);
+    tension += cell_tension[model.spring_cell_tension[e]];
   }
   return tension;
 }
@@ -242,11 +244,12 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
     }
     energy += 0.5 * rest_volume * strain.dot(model.cell_correction[c] * strain);
     if (model.has_twist) {
-      const auto edge = [&](int slot) -> Eigen::Vector3d {
-        const auto& ends = model.spring_nodes[model.cell_edges[c][slot]];
-        return x.col(ends[1]) - x.col(ends[0]);
-      };
-      energy += twist_energy(edge, model.cell_size.x(), model.cell_twist_stiffness[c],
+      std::array<Eigen::Vector3d, kEdgesPerCell> edges;
+      for (int e = 0; e < kEdgesPerCell; ++e) {
+        const auto& ends = model.spring_nodes[model.cell_edges[c][e]];
+        edges[e] = x.col(ends[1]) - x.col(ends[0]);
+      }
+      energy += twist_energy(edges, model.cell_size.x(), model.cell_twist_stiffness[c],
                              [](int, const Eigen::Vector3d&) {});
     }
     const double ratio = cell_frame(model, x, c).volume() / rest_volume;

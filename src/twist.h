@@ -28,7 +28,7 @@ constexpr int edge_slot(int axis, int corner) {
 }
 
 /// faces[d][side]: the face normal to d on side 0 (lower) or 1 (upper).
-inline std::array<std::array<TwistFace, 2>, 3> make_twist_faces() {
+constexpr std::array<std::array<TwistFace, 2>, 3> make_twist_faces() {
   std::array<std::array<TwistFace, 2>, 3> faces{};
   for (int d = 0; d < 3; ++d) {
     const int a = d == 0 ? 1 : 0;
@@ -43,33 +43,28 @@ inline std::array<std::array<TwistFace, 2>, 3> make_twist_faces() {
   return faces;
 }
 
-inline const std::array<std::array<TwistFace, 2>, 3>& twist_faces() {
-  static const auto faces = make_twist_faces();
-  return faces;
-}
+inline constexpr std::array<std::array<TwistFace, 2>, 3> kTwistFaces = make_twist_faces();
+inline const std::array<std::array<TwistFace, 2>, 3>& twist_faces() { return kTwistFaces; }
 
-/// Mean a- and c-edge vectors of a face; edge(slot) gives an edge vector.
+/// Mean a- and c-edge vectors of a face.
 struct FaceMeans {
   Eigen::Vector3d a, c;
 };
-template <typename EdgeFn>
-FaceMeans face_means(const TwistFace& face, const EdgeFn& edge) {
-  return {0.5 * (edge(face.a_edges[0]) + edge(face.a_edges[1])), 0.5 * (edge(face.c_edges[0]) + edge(face.c_edges[1]))};
-}
 inline FaceMeans face_means(const TwistFace& face, const std::array<Eigen::Vector3d, kEdgesPerCell>& edges) {
-  return face_means(face, [&](int slot) -> const Eigen::Vector3d& { return edges[slot]; });
+  return {0.5 * (edges[face.a_edges[0]] + edges[face.a_edges[1]]), 0.5 * (edges[face.c_edges[0]] + edges[face.c_edges[1]])};
 }
 
-/// Twist energy [J] of a cubic cell of side h [m] and stiffness k [Pa]; edge(slot) gives each edge
-/// vector (x of the upper corner minus x of the lower), and add_force(slot, f) receives the force
-/// on that edge's lower corner [N] (the upper corner gets the negative).
-template <typename EdgeFn, typename ForceFn>
-double twist_energy(const EdgeFn& edge, double h, double k, const ForceFn& add_force) {
+/// Twist energy [J] of a cubic cell of side h [m] and stiffness k [Pa] from its 12 edge vectors
+/// (x of the upper corner minus x of the lower); add_force(slot, f) receives the force on that
+/// edge's lower corner [N] (the upper corner gets the negative).
+template <typename ForceFn>
+inline double twist_energy(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges, double h, double k,
+                           const ForceFn& add_force) {
   const auto& faces = twist_faces();
   double energy = 0.0;
   for (int d = 0; d < 3; ++d) {
-    const FaceMeans lower = face_means(faces[d][0], edge);
-    const FaceMeans upper = face_means(faces[d][1], edge);
+    const FaceMeans lower = face_means(faces[d][0], edges);
+    const FaceMeans upper = face_means(faces[d][1], edges);
     const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
     energy += 0.5 * k * h * h * h * w * w;
     // dW/d(edge) = +-k h w / 2 times the other mean on that face

@@ -45,6 +45,8 @@ struct Model {
   /// spring_cell_edge, each cell * 12 + the edge's slot in that cell (edges only; diagonals have none).
   std::vector<int> spring_cell_offset;
   std::vector<int> spring_cell_edge;
+  /// The same links as cell * 3 + the edge's axis: where the cell's correction tension for it is.
+  std::vector<int> spring_cell_tension;
 
   // cells (num_cells)
   std::vector<Eigen::Vector3i> cell_grid_index;
