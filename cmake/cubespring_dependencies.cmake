@@ -19,6 +19,11 @@ if(CUBESPRING_WITH_OPENMP)
   cubespring_require(OpenMP_CXX_FOUND "OpenMP" "libgomp1 (part of g++)" "CUBESPRING_WITH_OPENMP=ON")
 endif()
 
+if(CUBESPRING_WITH_ASSIMP)
+  find_package(assimp 5 QUIET)
+  cubespring_require(assimp_FOUND "assimp" "libassimp-dev" "CUBESPRING_WITH_ASSIMP=ON (cubespring::mesh, loading mesh files)")
+endif()
+
 if(CUBESPRING_BUILD_APPS)
   find_package(nlohmann_json 3 QUIET)
   cubespring_require(nlohmann_json_FOUND "nlohmann_json" "nlohmann-json3-dev" "CUBESPRING_BUILD_APPS=ON (JSON output)")

@@ -19,6 +19,12 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/cubespringConfigVer
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfig.cmake
   ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfigVersion.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/cubespring)
+if(TARGET cubespring_mesh)
+  install(TARGETS cubespring_mesh EXPORT cubespringTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 if(TARGET cubespring_app)
   install(TARGETS cubespring_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()

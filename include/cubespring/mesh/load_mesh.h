@@ -1,0 +1,42 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <string>
+
+#include "cubespring/result.h"
+#include "cubespring/triangle_mesh.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring {
+
+/// How to read a surface mesh file.
+struct LoadOptions {
+  double scale = 1.0;  ///< multiplies every coordinate: 0.001 for a file in millimetres, 0.01 for
+                       ///< centimetres [m per file unit], > 0 and finite.
+};
+
+/// Reads a surface mesh file through assimp (OBJ, STL, PLY, COLLADA, glTF, FBX and the other
+/// formats it reads) into one TriangleMesh in metres.
+///
+/// - Polygons are triangulated; points and lines are ignored. A file without any triangle (a
+///   point cloud, a polyline) is an error.
+/// - Every (node, mesh) reference of the scene graph becomes one MeshPart, in depth-first order:
+///   its vertices are transformed by the node's accumulated transform, then multiplied by
+///   options.scale. The part's name is the mesh's name, or the node's when the mesh has none;
+///   its material_name is the material's name ("" for assimp's own "DefaultMaterial", which
+///   stands for no material in the file). A transform that mirrors (negative determinant) has
+///   its triangles reversed, so surfaces stay counter-clockwise seen from outside.
+/// - Vertices with identical coordinates are joined across the whole mesh
+///   (join_identical_vertices).
+/// - Coordinates are kept as the file gives them, except that COLLADA files are converted to
+///   metres by assimp when they declare a <unit>: load those with scale 1. A COLLADA <up_axis>
+///   is ignored (no rotation is added). assimp (as packaged) reads coordinates and transforms as
+///   32-bit floats: about 7 significant digits survive.
+///
+/// Errors name the file: it cannot be opened, assimp cannot read its format or reports a parse
+/// error, it has no triangles, a coordinate is not finite, a face refers to a missing vertex;
+/// or options.scale is not a finite number > 0.
+Result<TriangleMesh> load_mesh(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace cubespring

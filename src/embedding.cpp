@@ -1,0 +1,127 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "cubespring/embedding.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+
+#include <Eigen/Geometry>
+
+namespace cubespring {
+
+namespace {
+
+std::int64_t cell_key(const Eigen::Vector3i& index) {
+  // 21 bits per axis, offset so that negative indices map to distinct keys
+  constexpr std::int64_t kOffset = std::int64_t{1} << 20;
+  return ((index.x() + kOffset) << 42) | ((index.y() + kOffset) << 21) | (index.z() + kOffset);
+}
+
+// Squared distance from a point to the box of a cell, in cell units scaled by the cell size.
+double squared_distance_to_cell(const Eigen::Vector3d& local, const Eigen::Vector3i& cell, const Eigen::Vector3d& h) {
+  const Eigen::Vector3d lower = cell.cast<double>();
+  const Eigen::Vector3d outside =
+      (lower - local).cwiseMax(local - lower - Eigen::Vector3d::Ones()).cwiseMax(0.0).cwiseProduct(h);
+  return outside.squaredNorm();
+}
+
+// The occupied cell nearest to a point given in grid units, by rings of growing radius around
+// the grid cell that contains it; stops once no farther ring can hold a nearer cell.
+int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const Eigen::Vector3d& local,
+                 const Eigen::Vector3d& h, int max_radius) {
+  const Eigen::Vector3i home = local.array().floor().cast<int>();
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (int radius = 0; radius <= max_radius; ++radius) {
+    // every cell of a ring is at least (radius - 1) cells away along one axis
+    if (best >= 0 && (radius - 1) * h.minCoeff() > std::sqrt(best_distance)) break;
+    for (int dz = -radius; dz <= radius; ++dz) {
+      for (int dy = -radius; dy <= radius; ++dy) {
+        for (int dx = -radius; dx <= radius; ++dx) {
+          if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != radius) continue;
+          const Eigen::Vector3i cell = home + Eigen::Vector3i(dx, dy, dz);
+          const auto found = cell_of.find(cell_key(cell));
+          if (found == cell_of.end()) continue;
+          const double distance = squared_distance_to_cell(local, cell, h);
+          if (distance < best_distance) {  // ties keep the first in a fixed order: deterministic
+            best_distance = distance;
+            best = found->second;
+          }
+        }
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
+  if (Status status = validate(visual); !status) return status;
+  if (model.num_cells() == 0) return Status::error("cannot embed a mesh in a model with no cells");
+  std::unordered_map<std::int64_t, int> cell_of;
+  Eigen::Vector3i low = model.cell_grid_index.front();
+  Eigen::Vector3i high = low;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    cell_of.emplace(cell_key(model.cell_grid_index[static_cast<std::size_t>(c)]), c);
+    low = low.cwiseMin(model.cell_grid_index[static_cast<std::size_t>(c)]);
+    high = high.cwiseMax(model.cell_grid_index[static_cast<std::size_t>(c)]);
+  }
+  Embedding embedding;
+  embedding.triangles = visual.triangles;
+  embedding.vertex_cell.resize(static_cast<std::size_t>(visual.num_vertices()));
+  embedding.vertex_local.resize(3, visual.num_vertices());
+  for (int v = 0; v < visual.num_vertices(); ++v) {
+    // position in grid units: cell (i, j, k) spans [i, i + 1) x [j, j + 1) x [k, k + 1)
+    const Eigen::Vector3d local =
+        (visual.vertices.col(v) - model.origin).cwiseQuotient(model.cell_size);
+    if (!(local.array().abs() < 1e9).all()) {
+      return Status::error("vertex " + std::to_string(v) + " lies too far from the lattice to embed");
+    }
+    const Eigen::Vector3i home = local.array().floor().cast<int>();
+    const auto found = cell_of.find(cell_key(home));
+    int cell = found != cell_of.end() ? found->second : -1;
+    if (cell < 0) {
+      const Eigen::Vector3i reach = (home - low).cwiseAbs().cwiseMax((home - high).cwiseAbs());
+      cell = nearest_cell(cell_of, local, model.cell_size, reach.maxCoeff() + 1);
+    }
+    embedding.vertex_cell[static_cast<std::size_t>(v)] = cell;
+    embedding.vertex_local.col(v) = local - model.cell_grid_index[static_cast<std::size_t>(cell)].cast<double>();
+  }
+  return embedding;
+}
+
+void embedded_positions(const Model& model, const Embedding& embedding, const Eigen::Matrix3Xd& node_positions,
+                        Eigen::Matrix3Xd& vertices) {
+  vertices.resize(3, embedding.num_vertices());
+  for (int v = 0; v < embedding.num_vertices(); ++v) {
+    const auto& corners = model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
+    const Eigen::Vector3d u = embedding.vertex_local.col(v);
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    for (int corner = 0; corner < kCornersPerCell; ++corner) {
+      // corner c sits at offset (c & 1, c >> 1 & 1, c >> 2 & 1): weight prod of u or 1 - u
+      double weight = 1.0;
+      for (int axis = 0; axis < 3; ++axis) weight *= ((corner >> axis) & 1) ? u[axis] : 1.0 - u[axis];
+      position += weight * node_positions.col(corners[static_cast<std::size_t>(corner)]);
+    }
+    vertices.col(v) = position;
+  }
+}
+
+void vertex_normals(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, Eigen::Matrix3Xd& normals) {
+  normals.setZero(3, vertices.cols());
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    const Eigen::Vector3d a = vertices.col(triangles(0, t));
+    // the cross product's length is twice the area: the weighting comes for free
+    const Eigen::Vector3d n = (vertices.col(triangles(1, t)) - a).cross(vertices.col(triangles(2, t)) - a);
+    for (int corner = 0; corner < 3; ++corner) normals.col(triangles(corner, t)) += n;
+  }
+  for (Eigen::Index v = 0; v < normals.cols(); ++v) {
+    const double length = normals.col(v).norm();
+    if (length > 0.0) normals.col(v) /= length;
+  }
+}
+
+}  // namespace cubespring
