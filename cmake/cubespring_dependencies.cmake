@@ -25,6 +25,10 @@ if(CUBESPRING_WITH_ASSIMP)
 endif()
 
 if(CUBESPRING_BUILD_APPS)
+  if(NOT CUBESPRING_WITH_ASSIMP)
+    message(FATAL_ERROR "cubespring: the command-line tool loads mesh files (voxelize): "
+      "set CUBESPRING_WITH_ASSIMP=ON, or CUBESPRING_BUILD_APPS=OFF")
+  endif()
   find_package(nlohmann_json 3 QUIET)
   cubespring_require(nlohmann_json_FOUND "nlohmann_json" "nlohmann-json3-dev" "CUBESPRING_BUILD_APPS=ON (JSON output)")
   find_package(CLI11 QUIET)

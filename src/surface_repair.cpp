@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -124,6 +125,56 @@ void count_edge_problems(const std::vector<EdgeUse>& uses, SurfaceProblems& prob
   }
 }
 
+double signed_volume_of(const Eigen::Matrix3Xd& vertices, const std::vector<Triangle>& triangles) {
+  Eigen::Matrix3Xi block(3, static_cast<Eigen::Index>(triangles.size()));
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    for (int c = 0; c < 3; ++c) block(c, static_cast<Eigen::Index>(t)) = triangles[t][static_cast<std::size_t>(c)];
+  }
+  return signed_volume(TriangleMesh{vertices, block, {}}, 0, static_cast<int>(triangles.size()));
+}
+
+int find_root(std::vector<int>& parent, int i) {
+  while (parent[static_cast<std::size_t>(i)] != i) {
+    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    i = parent[static_cast<std::size_t>(i)];
+  }
+  return i;
+}
+
+// Parts that share an edge are pieces of one surface (a file that splits a closed tool by
+// material): they are one solid for orientation and the inside test. Solids are numbered in
+// the order of their first part.
+std::vector<int> solids_of_parts(const TriangleMesh& mesh, const std::vector<MeshPart>& parts) {
+  std::vector<int> parent(parts.size());
+  for (std::size_t p = 0; p < parts.size(); ++p) parent[p] = static_cast<int>(p);
+  std::vector<std::pair<std::int64_t, int>> edge_part;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    for (int t = parts[p].first_triangle; t < parts[p].first_triangle + parts[p].triangle_count; ++t) {
+      for (int corner = 0; corner < 3; ++corner) {
+        const std::int64_t a = mesh.triangles(corner, t);
+        const std::int64_t b = mesh.triangles((corner + 1) % 3, t);
+        if (a != b) edge_part.push_back({(std::min(a, b) << 32) | std::max(a, b), static_cast<int>(p)});
+      }
+    }
+  }
+  std::sort(edge_part.begin(), edge_part.end());
+  for (std::size_t i = 1; i < edge_part.size(); ++i) {
+    if (edge_part[i].first != edge_part[i - 1].first) continue;
+    const int a = find_root(parent, edge_part[i].second);
+    const int b = find_root(parent, edge_part[i - 1].second);
+    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  std::vector<int> solid(parts.size());
+  std::vector<int> number_of_root(parts.size(), -1);
+  int count = 0;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const auto root = static_cast<std::size_t>(find_root(parent, static_cast<int>(p)));
+    if (number_of_root[root] < 0) number_of_root[root] = count++;
+    solid[p] = number_of_root[root];
+  }
+  return solid;
+}
+
 }  // namespace
 
 double signed_volume(const TriangleMesh& mesh, int first, int count) {
@@ -145,62 +196,78 @@ double signed_volume(const TriangleMesh& mesh, int first, int count) {
 }
 
 RepairedSurface repair_surface(const TriangleMesh& mesh) {
+  const std::vector<MeshPart> parts = parts_of(mesh);
   RepairedSurface repaired;
   repaired.mesh.vertices = mesh.vertices;
-  std::vector<Triangle> output;
-  output.reserve(static_cast<std::size_t>(mesh.num_triangles()));
+  repaired.part_solid = solids_of_parts(mesh, parts);
+  const int solid_count = parts.empty() ? 0 : *std::max_element(repaired.part_solid.begin(), repaired.part_solid.end()) + 1;
+  repaired.solid_parts.assign(static_cast<std::size_t>(solid_count), {});
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    repaired.solid_parts[static_cast<std::size_t>(repaired.part_solid[p])].push_back(static_cast<int>(p));
+  }
+  // each solid's triangles, in file order, after dropping degenerate and duplicated ones (a
+  // duplicate with either orientation); kept_part remembers which part each goes back to
+  std::vector<std::vector<Triangle>> part_triangles(parts.size());
+  repaired.solid_volume.assign(static_cast<std::size_t>(solid_count), 0.0);
   int flipped = 0;
-  for (const MeshPart& part : parts_of(mesh)) {
-    // drop degenerate and duplicated triangles (a duplicate with either orientation)
+  for (int solid = 0; solid < solid_count; ++solid) {
     std::vector<Triangle> kept;
+    std::vector<int> kept_part;
     std::set<Triangle> seen;
-    for (int t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
-      const Triangle tri = triangle_at(mesh, t);
-      if (is_degenerate(mesh, tri)) {
-        ++repaired.problems.degenerate_triangles;
-        continue;
+    for (const int p : repaired.solid_parts[static_cast<std::size_t>(solid)]) {
+      const MeshPart& part = parts[static_cast<std::size_t>(p)];
+      for (int t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
+        const Triangle tri = triangle_at(mesh, t);
+        if (is_degenerate(mesh, tri)) {
+          ++repaired.problems.degenerate_triangles;
+          continue;
+        }
+        Triangle sorted = tri;
+        std::sort(sorted.begin(), sorted.end());
+        if (!seen.insert(sorted).second) {
+          ++repaired.problems.duplicate_triangles;
+          continue;
+        }
+        kept.push_back(tri);
+        kept_part.push_back(p);
       }
-      Triangle sorted = tri;
-      std::sort(sorted.begin(), sorted.end());
-      if (!seen.insert(sorted).second) {
-        ++repaired.problems.duplicate_triangles;
-        continue;
-      }
-      kept.push_back(tri);
     }
     const std::vector<EdgeUse> uses = edge_uses(kept);
     count_edge_problems(uses, repaired.problems);
     const PartOrientation orientation = orient_part(mesh, kept, uses);
     repaired.problems.components += orientation.components;
+    int solid_flipped = 0;
     for (std::size_t t = 0; t < kept.size(); ++t) {
-      if (orientation.flip[t]) std::swap(kept[t][1], kept[t][2]);
+      if (!orientation.flip[t]) continue;
+      std::swap(kept[t][1], kept[t][2]);
+      ++solid_flipped;
     }
-    MeshPart out_part = part;
-    out_part.first_triangle = static_cast<int>(output.size());
-    out_part.triangle_count = static_cast<int>(kept.size());
-    repaired.mesh.parts.push_back(out_part);
-    output.insert(output.end(), kept.begin(), kept.end());
-    // a part written clockwise: turn it all
-    Eigen::Matrix3Xi block(3, static_cast<Eigen::Index>(kept.size()));
-    for (std::size_t t = 0; t < kept.size(); ++t) {
-      for (int c = 0; c < 3; ++c) block(c, static_cast<Eigen::Index>(t)) = kept[t][static_cast<std::size_t>(c)];
-    }
-    TriangleMesh part_only{mesh.vertices, block, {}};
-    double volume = signed_volume(part_only, 0, part_only.num_triangles());
-    int part_flipped = 0;
-    for (const bool f : orientation.flip) part_flipped += f ? 1 : 0;
+    // a solid written clockwise: turn it all
+    double volume = signed_volume_of(mesh.vertices, kept);
     if (volume < 0.0) {
       volume = -volume;
-      for (std::size_t t = out_part.first_triangle; t < output.size(); ++t) std::swap(output[t][1], output[t][2]);
-      part_flipped = out_part.triangle_count - part_flipped;
+      for (Triangle& tri : kept) std::swap(tri[1], tri[2]);
+      solid_flipped = static_cast<int>(kept.size()) - solid_flipped;
     }
-    flipped += part_flipped;
-    repaired.part_volume.push_back(volume);
+    flipped += solid_flipped;
+    repaired.solid_volume[static_cast<std::size_t>(solid)] = volume;
+    for (std::size_t t = 0; t < kept.size(); ++t) part_triangles[static_cast<std::size_t>(kept_part[t])].push_back(kept[t]);
   }
   repaired.problems.flipped_triangles = flipped;
-  repaired.mesh.triangles.resize(3, static_cast<Eigen::Index>(output.size()));
-  for (std::size_t t = 0; t < output.size(); ++t) {
-    for (int c = 0; c < 3; ++c) repaired.mesh.triangles(c, static_cast<Eigen::Index>(t)) = output[t][static_cast<std::size_t>(c)];
+  // back in file order, part by part
+  int total = 0;
+  for (const auto& list : part_triangles) total += static_cast<int>(list.size());
+  repaired.mesh.triangles.resize(3, total);
+  int next = 0;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    MeshPart out_part = parts[p];
+    out_part.first_triangle = next;
+    out_part.triangle_count = static_cast<int>(part_triangles[p].size());
+    repaired.mesh.parts.push_back(out_part);
+    for (const Triangle& tri : part_triangles[p]) {
+      for (int c = 0; c < 3; ++c) repaired.mesh.triangles(c, next) = tri[static_cast<std::size_t>(c)];
+      ++next;
+    }
   }
   return repaired;
 }

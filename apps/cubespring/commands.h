@@ -13,5 +13,7 @@ namespace cubespring::app {
 using Command = std::function<int()>;
 Command add_measure_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
+Command add_voxelize_command(CLI::App& app);
+Command add_bench_voxelize_command(CLI::App& app);
 
 }  // namespace cubespring::app

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   std::map<std::string, cubespring::app::Command> commands;
   commands["measure"] = cubespring::app::add_measure_command(app);
   commands["bench"] = cubespring::app::add_bench_command(app);
+  commands["voxelize"] = cubespring::app::add_voxelize_command(app);
+  commands["bench-voxelize"] = cubespring::app::add_bench_voxelize_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

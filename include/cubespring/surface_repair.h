@@ -25,17 +25,22 @@ struct SurfaceProblems {
   }
 };
 
-/// A surface ready for an inside test: every part consistently oriented with outward normals.
+/// A surface ready for an inside test: every solid consistently oriented with outward normals.
+/// A solid is a part, or several parts whose surfaces share edges (a closed tool split into
+/// pieces by material): only together do they enclose a volume.
 struct RepairedSurface {
-  TriangleMesh mesh;                 ///< same vertices; triangles dropped or turned; parts kept
+  TriangleMesh mesh;                          ///< same vertices; triangles dropped or turned; parts kept
   SurfaceProblems problems;
-  std::vector<double> part_volume;   ///< enclosed volume of each part after repair [m^3]
+  std::vector<int> part_solid;                ///< solid of each part
+  std::vector<std::vector<int>> solid_parts;  ///< parts of each solid, in file order
+  std::vector<double> solid_volume;           ///< enclosed volume of each solid [m^3]
 };
 
-/// Drops degenerate and duplicated triangles, then orients each part: every edge-connected piece
-/// is made consistent across its two-triangle edges, keeping the orientation most of its area
-/// already had, and a part whose enclosed volume comes out negative is turned inside-out (a file
-/// written with clockwise triangles). A hollow part keeps its inner surface facing the cavity.
+/// Groups parts into solids, drops degenerate and duplicated triangles, then orients each solid:
+/// every edge-connected piece is made consistent across its two-triangle edges, keeping the
+/// orientation most of its area already had, and a solid whose enclosed volume comes out negative
+/// is turned inside-out (a file written with clockwise triangles). A hollow solid keeps its inner
+/// surface facing the cavity.
 /// The mesh must pass validate().
 RepairedSurface repair_surface(const TriangleMesh& mesh);
 

@@ -52,6 +52,10 @@ struct VoxelPart {
   double mesh_volume = 0.0;    ///< enclosed by the part's surface [m^3]
   double voxel_volume = 0.0;   ///< cells whose inside test says this part, before the inner part wins [m^3]
   int cells = 0;               ///< cells given this part (the inner part wins) after island removal
+  /// -1, or the part whose cells this part's surface encloses: parts sharing edges form one
+  /// solid (pieces of a tool split by material), labelled by its first part, which carries
+  /// the volumes and cells.
+  int merged_into = -1;
 };
 
 /// A voxelized mesh: the occupied cells of a grid, the part each belongs to, and a report.
@@ -60,7 +64,7 @@ struct Voxelization {
   Eigen::Vector3d cell_size{0, 0, 0};  ///< [m]
   Eigen::Vector3i grid_size{0, 0, 0};  ///< cells along x, y, z that the grid spans
   std::vector<Eigen::Vector3i> cells;  ///< occupied cells by grid index, x fastest
-  std::vector<int> cell_part;          ///< part index of each cell: the smallest part containing it
+  std::vector<int> cell_part;          ///< part index of each cell: the smallest solid containing it
 
   std::vector<VoxelPart> parts;
   SurfaceProblems surface;

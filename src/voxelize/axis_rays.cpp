@@ -93,8 +93,8 @@ void add_triangle_crossings(const std::array<Point2, 3>& projected, const std::a
 
 }  // namespace
 
-void cast_axis_rays(const TriangleMesh& mesh, int first, int count, const SampleGrid& grid, int axis,
-                    AxisVotes& votes) {
+void cast_axis_rays(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const SampleGrid& grid,
+                    int axis, AxisVotes& votes) {
   // rows run along `axis`; (b, c) follow it cyclically so that the projected orientation is
   // the sign of the normal's component along the axis
   const int axis_b = (axis + 1) % 3;
@@ -104,11 +104,11 @@ void cast_axis_rays(const TriangleMesh& mesh, int first, int count, const Sample
   const std::int64_t samples_along = grid.size[axis];
 
   std::vector<Crossing> crossings;
-  for (int t = first; t < first + count; ++t) {
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
     std::array<Point2, 3> projected;
     std::array<std::int64_t, 3> along;
     for (std::size_t corner = 0; corner < 3; ++corner) {
-      const auto vertex = mesh.vertices.col(mesh.triangles(static_cast<int>(corner), t));
+      const auto vertex = vertices.col(triangles(static_cast<Eigen::Index>(corner), t));
       projected[corner] = {snap(vertex[axis_b], grid.spacing[axis_b], grid.origin_index[axis_b]),
                            snap(vertex[axis_c], grid.spacing[axis_c], grid.origin_index[axis_c])};
       along[corner] = snap(vertex[axis], grid.spacing[axis], grid.origin_index[axis]);

@@ -8,7 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "cubespring/triangle_mesh.h"
+#include <Eigen/Core>
+
 #include "sample_grid.h"
 
 namespace cubespring::voxelize_detail {
@@ -24,9 +25,9 @@ struct AxisVotes {
   }
 };
 
-/// Adds the votes of rays along `axis` for triangles first .. first + count - 1 (oriented outward).
-/// A sample is inside when its winding number is not zero.
-void cast_axis_rays(const TriangleMesh& mesh, int first, int count, const SampleGrid& grid, int axis,
-                    AxisVotes& votes);
+/// Adds the votes of rays along `axis` for the triangles (3 x count vertex indices, oriented
+/// outward). A sample is inside when its winding number is not zero.
+void cast_axis_rays(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const SampleGrid& grid,
+                    int axis, AxisVotes& votes);
 
 }  // namespace cubespring::voxelize_detail

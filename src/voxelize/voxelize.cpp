@@ -85,12 +85,10 @@ struct PartSamples {
   int ambiguous = 0;
 };
 
-Result<PartSamples> inside_samples(const TriangleMesh& mesh, const MeshPart& part, const SampleGrid& grid,
-                                   int open_edges) {
+Result<PartSamples> inside_samples(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,
+                                   const std::string& name, const SampleGrid& grid, int open_edges) {
   AxisVotes votes(grid.count());
-  for (int axis = 0; axis < 3; ++axis) {
-    voxelize_detail::cast_axis_rays(mesh, part.first_triangle, part.triangle_count, grid, axis, votes);
-  }
+  for (int axis = 0; axis < 3; ++axis) voxelize_detail::cast_axis_rays(vertices, triangles, grid, axis, votes);
   PartSamples result;
   result.inside.assign(static_cast<std::size_t>(grid.count()), 0);
   std::vector<std::int64_t> undecided;
@@ -104,10 +102,10 @@ Result<PartSamples> inside_samples(const TriangleMesh& mesh, const MeshPart& par
     }
   }
   result.undecided = static_cast<int>(undecided.size());
-  if (static_cast<double>(undecided.size()) * part.triangle_count > kWindingBudget) {
+  if (static_cast<double>(undecided.size()) * static_cast<double>(triangles.cols()) > kWindingBudget) {
     std::ostringstream out;
     out << "the surface is too open for the inside test: rays through its holes leave "
-        << undecided.size() << " samples of part '" << part.name << "' undecided (the surface has "
+        << undecided.size() << " samples of part '" << name << "' undecided (the surface has "
         << open_edges << " open edges); close the holes or use a coarser cell size";
     return Status::error(out.str());
   }
@@ -115,8 +113,7 @@ Result<PartSamples> inside_samples(const TriangleMesh& mesh, const MeshPart& par
     const int i = static_cast<int>(s % grid.size.x());
     const int j = static_cast<int>((s / grid.size.x()) % grid.size.y());
     const int k = static_cast<int>(s / (std::int64_t{grid.size.x()} * grid.size.y()));
-    const double w = std::abs(voxelize_detail::winding_number(mesh, part.first_triangle, part.triangle_count,
-                                                              grid.centre(i, j, k)));
+    const double w = std::abs(voxelize_detail::winding_number(vertices, triangles, grid.centre(i, j, k)));
     result.inside[static_cast<std::size_t>(s)] = w >= 0.5 ? 1 : 0;
     if (std::abs(w - 0.5) < 0.5 - kAmbiguousBand) ++result.ambiguous;
   }
@@ -215,7 +212,7 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   Eigen::Vector3d high;
   triangle_bounds(mesh, low, high);
   const double longest = (high - low).maxCoeff();
-  const double total_part_volume = std::accumulate(repaired.part_volume.begin(), repaired.part_volume.end(), 0.0);
+  const double total_part_volume = std::accumulate(repaired.solid_volume.begin(), repaired.solid_volume.end(), 0.0);
   if (!(longest > 0.0) || total_part_volume <= 1e-9 * longest * longest * longest) {
     std::ostringstream out;
     out << "the mesh encloses no volume (" << total_part_volume << " m^3 in a bounding box of "
@@ -254,51 +251,66 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   samples.size = result.grid_size * per_axis;
   samples.origin_index = (first * per_axis).cast<std::int64_t>();
 
-  // the inside test part by part, the largest first, so that a smaller part inside wins
+  // the inside test solid by solid, the largest first, so that a smaller solid inside wins; a
+  // solid's cells take the part of its first part
   const std::vector<MeshPart>& parts = mesh.parts;
-  std::vector<int> order(parts.size());
+  const std::size_t solid_count = repaired.solid_parts.size();
+  std::vector<int> order(solid_count);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return repaired.part_volume[static_cast<std::size_t>(a)] > repaired.part_volume[static_cast<std::size_t>(b)]; });
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return repaired.solid_volume[static_cast<std::size_t>(a)] > repaired.solid_volume[static_cast<std::size_t>(b)];
+  });
+  if (parts.size() > 32000) {
+    return Status::error("the mesh has " + std::to_string(parts.size()) + " parts; at most 32000 are supported");
+  }
   CellGrid grid;
   grid.size = result.grid_size;
   grid.label.assign(static_cast<std::size_t>(grid.size.prod()), -1);
-  std::vector<std::vector<std::uint8_t>> part_cells(parts.size());
+  std::vector<std::vector<std::uint8_t>> solid_cells(solid_count);
+  result.parts.resize(parts.size());
   int ambiguous = 0;
-  for (const int p : order) {
-    const MeshPart& part = parts[static_cast<std::size_t>(p)];
-    Result<PartSamples> part_samples = inside_samples(mesh, part, samples, result.surface.open_edges);
-    if (!part_samples) return part_samples.status();
-    result.undecided_cells += part_samples->undecided;
-    ambiguous += part_samples->ambiguous;
-    part_cells[static_cast<std::size_t>(p)] =
-        cells_from_samples(part_samples->inside, samples, grid.size, per_axis, options.min_covered_fraction);
-    const std::vector<std::uint8_t>& inside = part_cells[static_cast<std::size_t>(p)];
+  for (const int solid : order) {
+    const std::vector<int>& members = repaired.solid_parts[static_cast<std::size_t>(solid)];
+    const int owner = members.front();
+    Eigen::Matrix3Xi triangles(3, 0);
+    for (const int p : members) {
+      const MeshPart& part = parts[static_cast<std::size_t>(p)];
+      triangles.conservativeResize(3, triangles.cols() + part.triangle_count);
+      triangles.rightCols(part.triangle_count) = mesh.triangles.middleCols(part.first_triangle, part.triangle_count);
+    }
+    Result<PartSamples> solid_samples =
+        inside_samples(mesh.vertices, triangles, parts[static_cast<std::size_t>(owner)].name, samples,
+                       result.surface.open_edges);
+    if (!solid_samples) return solid_samples.status();
+    result.undecided_cells += solid_samples->undecided;
+    ambiguous += solid_samples->ambiguous;
+    solid_cells[static_cast<std::size_t>(solid)] =
+        cells_from_samples(solid_samples->inside, samples, grid.size, per_axis, options.min_covered_fraction);
+    const std::vector<std::uint8_t>& inside = solid_cells[static_cast<std::size_t>(solid)];
     int count = 0;
     for (std::size_t c = 0; c < inside.size(); ++c) {
       if (!inside[c]) continue;
-      grid.label[c] = static_cast<std::int16_t>(p);
+      grid.label[c] = static_cast<std::int16_t>(owner);
       ++count;
     }
-    VoxelPart report;
-    report.name = part.name;
-    report.material_name = part.material_name;
-    report.triangles = part.triangle_count;
-    report.mesh_volume = repaired.part_volume[static_cast<std::size_t>(p)];
-    report.voxel_volume = count * result.cell_size.prod();
-    result.parts.push_back(report);
+    for (const int p : members) {
+      VoxelPart& report = result.parts[static_cast<std::size_t>(p)];
+      report.name = parts[static_cast<std::size_t>(p)].name;
+      report.material_name = parts[static_cast<std::size_t>(p)].material_name;
+      report.triangles = parts[static_cast<std::size_t>(p)].triangle_count;
+      report.merged_into = p == owner ? -1 : owner;
+      if (p != owner) continue;
+      report.mesh_volume = repaired.solid_volume[static_cast<std::size_t>(solid)];
+      report.voxel_volume = count * result.cell_size.prod();
+    }
   }
-  // parts were visited by volume: put the reports back in file order
-  std::vector<VoxelPart> in_file_order(parts.size());
-  for (std::size_t visit = 0; visit < order.size(); ++visit) in_file_order[static_cast<std::size_t>(order[visit])] = result.parts[visit];
-  result.parts = in_file_order;
 
   const int surface_cells = surface_cell_count(grid);
-  if (ambiguous > kMaxAmbiguousFraction * std::max(surface_cells, 1)) {
+  if (ambiguous > kMaxAmbiguousFraction * (surface_cells + ambiguous)) {
     std::ostringstream out;
-    out << "the inside test cannot decide: " << ambiguous << " cells near the surface (of "
-        << surface_cells << ") have a winding number between " << kAmbiguousBand << " and "
-        << 1.0 - kAmbiguousBand << "; the surface has " << result.surface.open_edges
+    out << "the inside test cannot decide: " << ambiguous << " samples have a winding number between "
+        << kAmbiguousBand << " and " << 1.0 - kAmbiguousBand << " (against " << surface_cells
+        << " cells on the body's surface); the surface has " << result.surface.open_edges
         << " open edges: close its holes";
     return Status::error(out.str());
   }
@@ -307,19 +319,19 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   result.connectivity = voxelize_detail::analyse_connectivity(grid, options.drop_islands);
   add_connectivity_warnings(result.connectivity, result.warnings);
 
-  // a part lying inside another (all its cells in the other's) is not counted twice in the volume
+  // a solid lying inside another (all its cells in the other's) is not counted twice in the volume
   result.mesh_volume = 0.0;
-  for (std::size_t p = 0; p < parts.size(); ++p) {
+  for (std::size_t a = 0; a < solid_count; ++a) {
     bool nested = false;
-    for (std::size_t q = 0; q < parts.size() && !nested; ++q) {
-      if (q == p || repaired.part_volume[q] <= repaired.part_volume[p]) continue;
-      bool all_in = result.parts[p].voxel_volume > 0.0;
+    for (std::size_t b = 0; b < solid_count && !nested; ++b) {
+      if (b == a || repaired.solid_volume[b] <= repaired.solid_volume[a]) continue;
+      bool all_in = std::find(solid_cells[a].begin(), solid_cells[a].end(), 1) != solid_cells[a].end();
       for (std::size_t c = 0; c < grid.label.size() && all_in; ++c) {
-        if (part_cells[p][c] && !part_cells[q][c]) all_in = false;
+        if (solid_cells[a][c] && !solid_cells[b][c]) all_in = false;
       }
       nested = all_in;
     }
-    if (!nested) result.mesh_volume += repaired.part_volume[p];
+    if (!nested) result.mesh_volume += repaired.solid_volume[a];
   }
 
   for (int k = 0; k < grid.size.z(); ++k) {

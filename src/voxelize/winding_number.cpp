@@ -8,14 +8,14 @@
 
 namespace cubespring::voxelize_detail {
 
-double winding_number(const TriangleMesh& mesh, int first, int count, const Eigen::Vector3d& point) {
+double winding_number(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const Eigen::Vector3d& point) {
   // the solid angle of each triangle by Van Oosterom and Strackee (1983):
   // tan(omega / 2) = a . (b x c) / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|)
   double total = 0.0;
-  for (int t = first; t < first + count; ++t) {
-    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t)) - point;
-    const Eigen::Vector3d b = mesh.vertices.col(mesh.triangles(1, t)) - point;
-    const Eigen::Vector3d c = mesh.vertices.col(mesh.triangles(2, t)) - point;
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    const Eigen::Vector3d a = vertices.col(triangles(0, t)) - point;
+    const Eigen::Vector3d b = vertices.col(triangles(1, t)) - point;
+    const Eigen::Vector3d c = vertices.col(triangles(2, t)) - point;
     const double la = a.norm();
     const double lb = b.norm();
     const double lc = c.norm();

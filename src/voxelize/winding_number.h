@@ -7,11 +7,10 @@
 
 #include <Eigen/Core>
 
-#include "cubespring/triangle_mesh.h"
 
 namespace cubespring::voxelize_detail {
 
-/// Winding number of triangles first .. first + count - 1 at a point.
-double winding_number(const TriangleMesh& mesh, int first, int count, const Eigen::Vector3d& point);
+/// Winding number of the triangles (3 x count vertex indices) at a point.
+double winding_number(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const Eigen::Vector3d& point);
 
 }  // namespace cubespring::voxelize_detail

@@ -102,6 +102,37 @@ TEST(Cli, TableWithoutJson) {
   EXPECT_NE(run.out.find("young_modulus"), std::string::npos) << run.out;
 }
 
+// The demo's organ: two parts, the tumour inside the liver.
+TEST(Cli, VoxelizeReportsPartsVolumesCountsAndProblems) {
+  const nlohmann::json j = run_json("voxelize " CUBESPRING_DATA_DIR "/liver.obj --cells-across 40");
+  ASSERT_EQ(j["parts"].size(), 2u);
+  EXPECT_EQ(j["parts"][0]["name"], "liver");
+  EXPECT_EQ(j["parts"][0]["material"], "liver_tissue");
+  EXPECT_EQ(j["parts"][1]["name"], "tumour");
+  EXPECT_GT(j["parts"][1]["cells"].get<int>(), 0);
+  EXPECT_LT(std::abs(j["relative_volume_difference"].get<double>()), 0.03);
+  // the tumour lies inside the liver: the mesh volume is the liver's alone
+  EXPECT_DOUBLE_EQ(j["mesh_volume"].get<double>(), j["parts"][0]["mesh_volume"].get<double>());
+  EXPECT_EQ(j["cells"].get<int>(), j["parts"][0]["cells"].get<int>() + j["parts"][1]["cells"].get<int>());
+  EXPECT_GT(j["nodes"].get<int>(), j["cells"].get<int>());
+  EXPECT_GT(j["springs"].get<int>(), 4 * j["cells"].get<int>());
+  EXPECT_GT(j["memory_estimate_bytes"].get<double>(), 0.0);
+  for (const char* key : {"open_edges", "non_manifold_edges", "inconsistent_orientation", "degenerate_triangles",
+                          "duplicate_triangles", "edge_only_contacts", "corner_only_contacts", "islands"}) {
+    EXPECT_TRUE(j["problems"].contains(key)) << key;
+  }
+  EXPECT_EQ(j["problems"]["open_edges"], 0);
+  const double h = j["cell_size"][0].get<double>();
+  EXPECT_NEAR(h, 0.22 / 40, 1e-6);
+}
+
+TEST(Cli, VoxelizeTableNamesTheParts) {
+  const ToolRun run = run_tool("voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.01");
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("tumour_tissue"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("voxel volume"), std::string::npos) << run.out;
+}
+
 struct BadArgument {
   const char* arguments;
   const char* named;  // what the one-line error must name
@@ -127,6 +158,14 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgument{"measure shear --control torque", "--control"},
                       BadArgument{"measure elongation --young abc", "--young"},
                       BadArgument{"measure elongation --model tetra", "--model"},
-                      BadArgument{"measure elongation --model exact-bending --edge-fraction 0", "--edge-fraction"}));
+                      BadArgument{"measure elongation --model exact-bending --edge-fraction 0", "--edge-fraction"},
+                      BadArgument{"voxelize /nonexistent/organ.obj", "/nonexistent/organ.obj"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0", "--cell-size"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.01 --cells-across 9",
+                                  "--cells-across"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --scale -2", "-2"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.0001 --max-memory 1000000",
+                                  "memory limit"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.mtl", "liver.mtl"}));
 
 }  // namespace

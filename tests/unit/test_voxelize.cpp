@@ -220,6 +220,21 @@ TEST(Voxelize, OverlappingPartsGiveTheOverlapToTheSmallerPart) {
   EXPECT_NEAR(v.mesh_volume, closed_volume(big) + closed_volume(small), 1e-12);
 }
 
+TEST(Voxelize, PartsSharingEdgesAreOneSolid) {
+  // a box whose faces are split between two parts (a tool split by material): neither part
+  // encloses anything alone
+  TriangleMesh box = test::subdivide(box_mesh(Eigen::Vector3d(0.01, 0.02, 0.03), Eigen::Vector3d(0.47, 0.38, 0.29)), 1);
+  box.parts = {MeshPart{"handle", "steel", 0, 20}, MeshPart{"grip", "rubber", 20, 28}};
+  const Voxelization v = voxelize_ok(box, cell_size(0.1));
+  EXPECT_EQ(v.surface.open_edges, 0);
+  EXPECT_EQ(v.cells.size(), 5u * 4u * 3u);
+  EXPECT_EQ(v.parts[0].merged_into, -1);
+  EXPECT_EQ(v.parts[1].merged_into, 0);
+  EXPECT_EQ(v.parts[0].cells, 60);
+  EXPECT_EQ(v.parts[1].cells, 0);
+  EXPECT_NEAR(v.mesh_volume, 0.46 * 0.36 * 0.26, 1e-12);
+}
+
 TEST(Voxelize, ReportsHingesBallJointsAndIslands) {
   const TriangleMesh a = box_mesh(Eigen::Vector3d(0.01, 0.01, 0.01), Eigen::Vector3d(0.19, 0.19, 0.19));
   const auto with = [&](const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
@@ -293,7 +308,7 @@ TEST(SurfaceRepair, CountsEachKindOfProblem) {
   TriangleMesh box = box_mesh(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 1, 1));
   EXPECT_TRUE(repair_surface(box).problems.clean());
   EXPECT_EQ(repair_surface(box).problems.components, 1);
-  EXPECT_NEAR(repair_surface(box).part_volume[0], 1.0, 1e-15);
+  EXPECT_NEAR(repair_surface(box).solid_volume[0], 1.0, 1e-15);
   EXPECT_EQ(repair_surface(test::remove_triangles(box, 1.0 / 12.0)).problems.open_edges, 3);
   // a third triangle on edge (0, 1): non-manifold, and the edge's two other uses are no longer a pair
   TriangleMesh fin = box;
@@ -308,7 +323,7 @@ TEST(SurfaceRepair, CountsEachKindOfProblem) {
   EXPECT_EQ(repair_surface(degenerate).problems.degenerate_triangles, 1);
   const RepairedSurface flipped = repair_surface(test::flip_triangles(box, 1.0));
   EXPECT_EQ(flipped.problems.flipped_triangles, 12);
-  EXPECT_NEAR(flipped.part_volume[0], 1.0, 1e-15);
+  EXPECT_NEAR(flipped.solid_volume[0], 1.0, 1e-15);
 }
 
 }  // namespace
