@@ -24,6 +24,30 @@ if(CUBESPRING_WITH_ASSIMP)
   cubespring_require(assimp_FOUND "assimp" "libassimp-dev" "CUBESPRING_WITH_ASSIMP=ON (cubespring::mesh, loading mesh files)")
 endif()
 
+if(CUBESPRING_WITH_BULLET OR CUBESPRING_WITH_OSMESA)
+  find_package(PkgConfig QUIET)
+  cubespring_require(PKG_CONFIG_FOUND "pkg-config" "pkg-config" "finding Bullet and OSMesa")
+endif()
+
+if(CUBESPRING_WITH_BULLET)
+  # Debian ships Bullet twice: an application must link the same precision as the plugin
+  if(CUBESPRING_BULLET_DOUBLE)
+    set(CUBESPRING_BULLET_MODULE bullet-float64)
+  else()
+    set(CUBESPRING_BULLET_MODULE bullet)
+  endif()
+  pkg_check_modules(BULLET QUIET IMPORTED_TARGET GLOBAL ${CUBESPRING_BULLET_MODULE})
+  cubespring_require(BULLET_FOUND "Bullet (${CUBESPRING_BULLET_MODULE})" "libbullet-dev"
+    "CUBESPRING_WITH_BULLET=ON (cubespring::bullet)")
+endif()
+
+if(CUBESPRING_WITH_OSMESA)
+  pkg_check_modules(OSMESA QUIET IMPORTED_TARGET GLOBAL osmesa)
+  cubespring_require(OSMESA_FOUND "OSMesa" "libosmesa6-dev" "CUBESPRING_WITH_OSMESA=ON (cubespring::render)")
+  find_package(PNG QUIET)
+  cubespring_require(PNG_FOUND "libpng" "libpng-dev" "CUBESPRING_WITH_OSMESA=ON (PNG frames)")
+endif()
+
 if(CUBESPRING_BUILD_APPS)
   if(NOT CUBESPRING_WITH_ASSIMP)
     message(FATAL_ERROR "cubespring: the command-line tool loads mesh files (voxelize): "

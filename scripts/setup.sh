@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 preset="${1:-release}"
 shift || true
 
-packages=(build-essential cmake ninja-build ccache libeigen3-dev libgtest-dev nlohmann-json3-dev libcli11-dev libassimp-dev "$@")
+packages=(build-essential cmake ninja-build ccache libeigen3-dev libgtest-dev nlohmann-json3-dev libcli11-dev libassimp-dev
+  pkg-config libbullet-dev libosmesa6-dev libpng-dev "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,130 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cubespring/constraints.h"
+#include "cubespring/embedding.h"
+#include "cubespring/forces.h"
+#include "cubespring/integrator.h"
+#include "cubespring/lattice.h"
+#include "cubespring/model.h"
+#include "cubespring/result.h"
+#include "cubespring/state.h"
+#include "cubespring/triangle_mesh.h"
+
+class btRigidBody;
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring::bullet {
+
+/// How the tissue meets rigid bodies (docs/bullet-plugin.md, section 2). Contacts are exact
+/// non-penetration of the contact surface's vertices: a vertex that ends a sub-step inside a
+/// rigid shape is moved back onto its surface, and the momentum that takes is the contact
+/// impulse, given in equal and opposite measure to the rigid body.
+struct ContactSettings {
+  double friction = 0.5;  ///< Coulomb coefficient mu [-], >= 0: the tangential impulse is at most mu
+                          ///< times the normal one
+};
+
+/// What to build a soft body from.
+struct SoftBodySettings {
+  LatticeDesc lattice;  ///< cells, materials, cell model (see cubespring/lattice.h)
+  /// The surface the user sees, embedded in the lattice; contact acts on its vertices. Without
+  /// one, contact acts on the nodes of the lattice's boundary faces.
+  std::optional<TriangleMesh> visual_mesh;
+  /// kSymplecticEuler (default): sub-steps at the body's stable explicit step, which contact and
+  /// tool forces need to be followed; kImplicitEuler: sub-steps of at most max_implicit_step.
+  Integrator integrator = Integrator::kSymplecticEuler;
+  double max_implicit_step = 1e-3;  ///< [s]
+  double time_step_safety = 0.9;    ///< explicit sub-step as a fraction of the stable step (0, 1]
+  int threads = 1;                  ///< force-pass threads; results do not depend on it
+  ContactSettings contact;
+};
+
+/// A node or nodes held by a rigid body: they move with it.
+struct Anchor {
+  btRigidBody* body = nullptr;
+  std::vector<int> nodes;
+  Eigen::Matrix3Xd local;  ///< each node's position in the body's frame at attachment [m]
+};
+
+/// A calibrated cube lattice that lives in a cubespring::bullet::World. Its state can be read and
+/// changed between world steps like any cubespring body's.
+class SoftBody {
+ public:
+  static Result<std::unique_ptr<SoftBody>> create(const SoftBodySettings& settings);
+
+  const Model& model() const { return model_; }
+  State& state() { return state_; }
+  const State& state() const { return state_; }
+  /// Nodes fixed or driven by the user (anchored nodes are driven by the world).
+  Constraints& constraints() { return constraints_; }
+  /// External nodal forces [N] the user adds (gravity comes from the world).
+  Loads& loads() { return loads_; }
+
+  /// Contact surface: vertices at the current state, and their triangles (counter-clockwise from
+  /// outside). The visual mesh when there is one, else the lattice's boundary faces.
+  const Eigen::Matrix3Xd& surface_vertices() const { return surface_positions_; }
+  const Eigen::Matrix3Xi& surface_triangles() const { return surface_triangles_; }
+  /// The visual mesh's embedding (empty without a visual mesh).
+  const Embedding& embedding() const { return embedding_; }
+
+  /// Attaches nodes to a rigid body at their current positions; returns the anchor's id. A static
+  /// or kinematic body drives the nodes; a dynamic body also feels the tissue's pull.
+  Result<int> anchor(btRigidBody* body, const std::vector<int>& nodes);
+  /// Attaches every node whose rest position lies in [lower, upper] [m].
+  Result<int> anchor_box(btRigidBody* body, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper);
+  /// Releases an anchor's nodes; they move freely from the next step.
+  Status detach(int anchor_id);
+  const std::vector<std::optional<Anchor>>& anchors() const { return anchors_; }
+
+  /// The first surface triangle a segment from `from` to `to` [m] crosses: for picking.
+  struct RayHit {
+    int triangle = -1;
+    int nearest_node = -1;       ///< lattice node with the largest weight at the hit point
+    Eigen::Vector3d point{0, 0, 0};
+    double fraction = 0.0;       ///< along the segment, 0 at `from`
+  };
+  std::optional<RayHit> ray_test(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+
+  /// The sub-step the world takes for this body [s].
+  double sub_step() const { return sub_step_; }
+  /// The last sub-step's report; a world step stops advancing a body that went unstable.
+  const StepReport& last_report() const { return last_report_; }
+
+ private:
+  friend class World;
+  friend class ContactProjector;
+  SoftBody() = default;
+  void update_surface();
+
+  Model model_;
+  State state_;
+  Constraints constraints_;
+  Loads loads_;
+  std::unique_ptr<Stepper> stepper_;
+  StepSettings step_settings_;
+  ContactSettings contact_;
+  double sub_step_ = 0.0;
+  StepReport last_report_;
+
+  // contact surface: vertex v sits at sum over its entries of weight * node position
+  std::vector<int> surface_offset_;  // num_vertices + 1
+  std::vector<int> surface_node_;
+  std::vector<double> surface_weight_;
+  std::vector<double> surface_inverse_mass_;  // sum of weight^2 / node mass, per vertex
+  Eigen::Matrix3Xi surface_triangles_;
+  Eigen::Matrix3Xd surface_positions_;
+  Embedding embedding_;
+
+  std::vector<std::optional<Anchor>> anchors_;
+};
+
+}  // namespace cubespring::bullet

@@ -1,0 +1,65 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#pragma once
+
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <btBulletDynamicsCommon.h>
+
+#include "cubespring/bullet/soft_body.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
+namespace cubespring::bullet {
+
+/// What the tissue does to one rigid body: the mean over the current Bullet step's sub-steps so
+/// far (the whole last step once it is over), refreshed every sub-step: for a haptic device.
+struct ContactWrench {
+  Eigen::Vector3d force{0, 0, 0};   ///< on the rigid body, world frame [N]
+  Eigen::Vector3d torque{0, 0, 0};  ///< about the body's centre of mass, world frame [N m]
+  int contacts = 0;                 ///< contact-surface vertices pushed out of it in the last sub-step
+  double time = 0.0;                ///< simulated time at the end of that sub-step [s]
+};
+
+/// A Bullet dynamics world that also steps cubespring soft bodies: rigid bodies, constraints, ray
+/// tests and the user's code work as in btDiscreteDynamicsWorld. Each Bullet step first advances
+/// every soft body over the step in sub-steps, against the rigid bodies that Bullet's broadphase
+/// finds near it (dynamic ones integrated alongside, so contacts stay stable), then gives those
+/// bodies the contact impulses and runs Bullet's own step. Method names follow Bullet's.
+class World : public btDiscreteDynamicsWorld {
+ public:
+  World(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
+        btCollisionConfiguration* configuration);
+  ~World() override;
+
+  /// Adds a soft body (not owned: it must outlive its membership). Gravity is the world's.
+  void addSoftBody(SoftBody* body);
+  void removeSoftBody(SoftBody* body);
+  const std::vector<SoftBody*>& getSoftBodies() const { return soft_bodies_; }
+
+  /// The wrench the tissue applies to a rigid body (zero when not in contact). Safe to call from
+  /// another thread while the world steps (a 1 kHz haptic loop).
+  ContactWrench getContactWrench(const btCollisionObject* object) const;
+
+  /// Empty while every soft body steps normally; else what stopped one (it is then left as it
+  /// was at the start of the failing sub-step and no longer advanced until reset).
+  const std::string& getSoftBodyError() const { return soft_body_error_; }
+
+ protected:
+  void internalSingleStepSimulation(btScalar timeStep) override;
+
+ private:
+  void advance_soft_body(SoftBody& body, double time_step);
+
+  std::vector<SoftBody*> soft_bodies_;
+  mutable std::mutex wrench_mutex_;
+  // per rigid object, what each soft body did to it; read summed
+  std::map<const btCollisionObject*, std::map<const SoftBody*, ContactWrench>> wrenches_;
+  double time_ = 0.0;
+  std::string soft_body_error_;
+};
+
+}  // namespace cubespring::bullet

@@ -1,0 +1,220 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "rigid_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
+#include <BulletCollision/CollisionShapes/btPolyhedralConvexShape.h>
+#include <LinearMath/btConvexHullComputer.h>
+
+#include "conversions.h"
+
+namespace cubespring::bullet {
+
+namespace {
+
+std::optional<Eigen::Vector3d> plane_push(const btStaticPlaneShape& plane, const btTransform& transform,
+                                          const Eigen::Vector3d& point, double tolerance) {
+  const Eigen::Vector3d normal = to_eigen(transform.getBasis() * plane.getPlaneNormal());
+  const Eigen::Vector3d on_plane = to_eigen(transform * (plane.getPlaneNormal() * plane.getPlaneConstant()));
+  const double height = (point - on_plane).dot(normal);
+  if (height > tolerance) return std::nullopt;
+  return Eigen::Vector3d(std::max(-height, 0.0) * normal);
+}
+
+// The shortest move out of a box centred at the origin (local frame), or nothing when outside.
+std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen::Vector3d& p) {
+  const Eigen::Vector3d room = half - p.cwiseAbs();
+  if ((room.array() <= 0.0).any()) return std::nullopt;
+  int axis = 0;
+  room.minCoeff(&axis);
+  Eigen::Vector3d push = Eigen::Vector3d::Zero();
+  push[axis] = p[axis] >= 0.0 ? room[axis] : -room[axis];
+  return push;
+}
+
+// Round shapes about an axis: out through the side or an end, whichever is shorter.
+std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, int axis, const Eigen::Vector3d& p) {
+  Eigen::Vector3d radial = p;
+  radial[axis] = 0.0;
+  const double r = radial.norm();
+  const double side_room = radius - r;
+  const double end_room = half_height - std::abs(p[axis]);
+  if (side_room <= 0.0 || end_room <= 0.0) return std::nullopt;
+  Eigen::Vector3d push = Eigen::Vector3d::Zero();
+  if (end_room < side_room || r == 0.0) {
+    push[axis] = p[axis] >= 0.0 ? end_room : -end_room;
+  } else {
+    push = radial / r * side_room;
+  }
+  return push;
+}
+
+std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, int axis, const Eigen::Vector3d& p) {
+  Eigen::Vector3d nearest = Eigen::Vector3d::Zero();
+  nearest[axis] = std::clamp(p[axis], -half_height, half_height);
+  const Eigen::Vector3d away = p - nearest;
+  const double distance = away.norm();
+  if (distance >= radius) return std::nullopt;
+  if (distance == 0.0) {
+    Eigen::Vector3d push = Eigen::Vector3d::Zero();
+    push[(axis + 1) % 3] = radius;
+    return push;
+  }
+  return Eigen::Vector3d(away / distance * (radius - distance));
+}
+
+// A convex polyhedron as the planes of its hull faces (outward normal, offset).
+std::optional<Eigen::Vector3d> polyhedron_push(const btPolyhedralConvexShape& shape, const Eigen::Vector3d& p) {
+  std::vector<btVector3> points(static_cast<std::size_t>(shape.getNumVertices()));
+  for (int i = 0; i < shape.getNumVertices(); ++i) shape.getVertex(i, points[static_cast<std::size_t>(i)]);
+  btConvexHullComputer hull;
+  hull.compute(&points[0].getX(), sizeof(btVector3), static_cast<int>(points.size()), 0, 0);
+  double best_room = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_normal = Eigen::Vector3d::Zero();
+  for (int f = 0; f < hull.faces.size(); ++f) {
+    // the face's plane from three of its corners (the hull turns counter-clockwise from outside)
+    const btConvexHullComputer::Edge* edge = &hull.edges[hull.faces[f]];
+    const Eigen::Vector3d a = to_eigen(hull.vertices[edge->getSourceVertex()]);
+    const Eigen::Vector3d b = to_eigen(hull.vertices[edge->getTargetVertex()]);
+    const Eigen::Vector3d c = to_eigen(hull.vertices[edge->getNextEdgeOfFace()->getTargetVertex()]);
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    const double room = (a - p).dot(normal);
+    if (room <= 0.0) return std::nullopt;
+    if (room < best_room) {
+      best_room = room;
+      best_normal = normal;
+    }
+  }
+  if (!std::isfinite(best_room)) return std::nullopt;
+  return Eigen::Vector3d(best_room * best_normal);
+}
+
+std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const btTransform& transform,
+                                           const Eigen::Vector3d& point) {
+  // exact inside tests in the shape's frame: Bullet's GJK signed distance is unreliable for
+  // points deep inside a shape, which is where a projection needs it most
+  const Eigen::Vector3d p = to_eigen(transform.invXform(to_bt(point)));
+  std::optional<Eigen::Vector3d> push;
+  switch (convex.getShapeType()) {
+    case SPHERE_SHAPE_PROXYTYPE:
+      push = capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()), 0.0, 2, p);
+      break;
+    case BOX_SHAPE_PROXYTYPE:
+      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()), p);
+      break;
+    case CAPSULE_SHAPE_PROXYTYPE: {
+      const auto& capsule = static_cast<const btCapsuleShape&>(convex);
+      push = capsule_push(static_cast<double>(capsule.getRadius()), static_cast<double>(capsule.getHalfHeight()),
+                          capsule.getUpAxis(), p);
+      break;
+    }
+    case CYLINDER_SHAPE_PROXYTYPE: {
+      const auto& cylinder = static_cast<const btCylinderShape&>(convex);
+      const int axis = cylinder.getUpAxis();
+      const Eigen::Vector3d half = to_eigen(cylinder.getHalfExtentsWithMargin());
+      push = cylinder_push(half[(axis + 1) % 3], half[axis], axis, p);
+      break;
+    }
+    default:
+      if (convex.isPolyhedral()) push = polyhedron_push(static_cast<const btPolyhedralConvexShape&>(convex), p);
+      break;
+  }
+  if (!push) return std::nullopt;
+  return Eigen::Vector3d(to_eigen(transform.getBasis() * to_bt(*push)));
+}
+
+Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                          const Eigen::Vector3d& c) {
+  // Voronoi regions of the vertices, edges and face (Ericson, Real-Time Collision Detection 5.1.5)
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+// The nearest triangle of a concave mesh around a point, in the mesh's own frame.
+class NearestTriangle : public btTriangleCallback {
+ public:
+  explicit NearestTriangle(const Eigen::Vector3d& point) : point_(point) {}
+  void processTriangle(btVector3* corners, int, int) override {
+    const Eigen::Vector3d a = to_eigen(corners[0]), b = to_eigen(corners[1]), c = to_eigen(corners[2]);
+    const Eigen::Vector3d normal = (b - a).cross(c - a);
+    if (normal.squaredNorm() == 0.0) return;
+    const Eigen::Vector3d closest = closest_point_on_triangle(point_, a, b, c);
+    const double distance = (closest - point_).squaredNorm();
+    if (distance >= best_distance_) return;
+    best_distance_ = distance;
+    closest_ = closest;
+    normal_ = normal.normalized();
+  }
+  bool found() const { return best_distance_ < std::numeric_limits<double>::infinity(); }
+  const Eigen::Vector3d& closest() const { return closest_; }
+  const Eigen::Vector3d& normal() const { return normal_; }
+
+ private:
+  Eigen::Vector3d point_;
+  double best_distance_ = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d closest_{0, 0, 0};
+  Eigen::Vector3d normal_{0, 0, 1};
+};
+
+std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const btTransform& transform,
+                                            const Eigen::Vector3d& point, double tolerance, double thickness) {
+  const btTransform inverse = transform.inverse();
+  const Eigen::Vector3d local = to_eigen(inverse * to_bt(point));
+  NearestTriangle nearest(local);
+  const double reach = thickness + tolerance;
+  concave.processAllTriangles(&nearest, to_bt(local - Eigen::Vector3d::Constant(reach)),
+                              to_bt(local + Eigen::Vector3d::Constant(reach)));
+  if (!nearest.found()) return std::nullopt;
+  const double height = (local - nearest.closest()).dot(nearest.normal());
+  if (height > tolerance || height < -thickness) return std::nullopt;
+  if (height >= 0) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d(to_eigen(transform.getBasis() * to_bt(nearest.closest() - local)));
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
+                                                const Eigen::Vector3d& point, double tolerance, double thickness) {
+  if (shape.getShapeType() == STATIC_PLANE_PROXYTYPE) {
+    return plane_push(static_cast<const btStaticPlaneShape&>(shape), transform, point, tolerance);
+  }
+  if (shape.isCompound()) {
+    // the deepest child decides; a point inside two children leaves the second one next sub-step
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    std::optional<Eigen::Vector3d> deepest;
+    for (int child = 0; child < compound.getNumChildShapes(); ++child) {
+      const std::optional<Eigen::Vector3d> push =
+          penetration_push(*compound.getChildShape(child), transform * compound.getChildTransform(child), point,
+                           tolerance, thickness);
+      if (push && (!deepest || push->squaredNorm() > deepest->squaredNorm())) deepest = push;
+    }
+    return deepest;
+  }
+  if (shape.isConvex()) return convex_push(static_cast<const btConvexShape&>(shape), transform, point);
+  if (shape.isConcave()) {
+    return concave_push(static_cast<const btConcaveShape&>(shape), transform, point, tolerance, thickness);
+  }
+  return std::nullopt;
+}
+
+}  // namespace cubespring::bullet

@@ -1,0 +1,78 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "rigid_track.h"
+
+#include <LinearMath/btTransformUtil.h>
+
+#include "conversions.h"
+
+namespace cubespring::bullet {
+
+namespace {
+
+Eigen::Matrix3d to_eigen(const btMatrix3x3& m) {
+  Eigen::Matrix3d out;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) out(r, c) = static_cast<double>(m[r][c]);
+  return out;
+}
+
+}  // namespace
+
+Eigen::Vector3d RigidTrack::centre() const { return bullet::to_eigen(transform.getOrigin()); }
+
+Eigen::Vector3d RigidTrack::velocity_at(const Eigen::Vector3d& point) const {
+  return linear_velocity + angular_velocity.cross(point - centre());
+}
+
+void RigidTrack::receive(const Eigen::Vector3d& impulse_on_body, const Eigen::Vector3d& point) {
+  substep_impulse += impulse_on_body;
+  substep_angular_impulse += (point - centre()).cross(impulse_on_body);
+  ++substep_contacts;
+}
+
+RigidTrack start_track(const btCollisionObject* object) {
+  RigidTrack track;
+  track.object = object;
+  track.transform = object->getWorldTransform();
+  track.body = const_cast<btRigidBody*>(btRigidBody::upcast(object));
+  if (track.body == nullptr) return track;
+  // a kinematic body already stands at the step's end; its velocity says where it came from
+  track.linear_velocity = bullet::to_eigen(track.body->getLinearVelocity());
+  track.angular_velocity = bullet::to_eigen(track.body->getAngularVelocity());
+  track.dynamic = !object->isStaticOrKinematicObject() && track.body->getInvMass() > 0;
+  if (track.dynamic) {
+    track.gravity = bullet::to_eigen(track.body->getGravity());
+    track.inverse_mass = static_cast<double>(track.body->getInvMass());
+    track.inverse_inertia = to_eigen(track.body->getInvInertiaTensorWorld());
+  }
+  return track;
+}
+
+void advance_track(RigidTrack& track, double t, double dt, double step_length) {
+  if (track.body == nullptr || track.object->isStaticObject()) return;
+  if (track.object->isKinematicObject()) {
+    // pose at t + dt, counted back from the step's end
+    btTransformUtil::integrateTransform(track.object->getWorldTransform(), to_bt(track.linear_velocity),
+                                        to_bt(track.angular_velocity), static_cast<btScalar>(t + dt - step_length),
+                                        track.transform);
+    return;
+  }
+  if (!track.dynamic) return;
+  track.linear_velocity += track.gravity * dt;
+  btTransform next;
+  btTransformUtil::integrateTransform(track.transform, to_bt(track.linear_velocity), to_bt(track.angular_velocity),
+                                      static_cast<btScalar>(dt), next);
+  track.transform = next;
+}
+
+void finish_substep(RigidTrack& track) {
+  if (track.dynamic) {
+    track.linear_velocity += track.inverse_mass * track.substep_impulse;
+    track.angular_velocity += track.inverse_inertia * track.substep_angular_impulse;
+  }
+  track.impulse += track.substep_impulse;
+  track.angular_impulse += track.substep_angular_impulse;
+}
+
+}  // namespace cubespring::bullet

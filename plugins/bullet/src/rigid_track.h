@@ -1,0 +1,47 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// A rigid body as a soft body's sub-steps see it during one Bullet step (docs/bullet-plugin.md,
+// section 3): static bodies stay put, kinematic ones follow the velocity Bullet gave them for the
+// step, dynamic ones are integrated alongside with gravity and the tissue's impulses, which are
+// handed to Bullet at the end of the step.
+#pragma once
+
+#include <Eigen/Core>
+#include <btBulletDynamicsCommon.h>
+
+namespace cubespring::bullet {
+
+struct RigidTrack {
+  const btCollisionObject* object = nullptr;
+  btRigidBody* body = nullptr;  ///< null for a collision object that is not a rigid body
+  bool dynamic = false;
+  btTransform transform;        ///< at the end of the current sub-step
+  Eigen::Vector3d linear_velocity{0, 0, 0};   ///< [m/s]
+  Eigen::Vector3d angular_velocity{0, 0, 0};  ///< [rad/s]
+  Eigen::Vector3d gravity{0, 0, 0};           ///< [m/s^2], dynamic bodies
+  double inverse_mass = 0.0;
+  Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Zero();  ///< world frame, at the step's start
+
+  Eigen::Vector3d impulse{0, 0, 0};          ///< from the tissue over the Bullet step [N s]
+  Eigen::Vector3d angular_impulse{0, 0, 0};  ///< about the centre of mass [N m s]
+  Eigen::Vector3d substep_impulse{0, 0, 0};
+  Eigen::Vector3d substep_angular_impulse{0, 0, 0};
+  int substep_contacts = 0;
+
+  Eigen::Vector3d centre() const;
+  /// Velocity of the body's material point at `point` [m/s].
+  Eigen::Vector3d velocity_at(const Eigen::Vector3d& point) const;
+  /// An impulse from the tissue on the body at `point` during this sub-step.
+  void receive(const Eigen::Vector3d& impulse_on_body, const Eigen::Vector3d& point);
+};
+
+/// The track of an object at the start of a Bullet step of length step_length.
+RigidTrack start_track(const btCollisionObject* object);
+
+/// Moves the track to the end of a sub-step [t, t + dt] of a Bullet step of length step_length.
+void advance_track(RigidTrack& track, double t, double dt, double step_length);
+
+/// Applies the sub-step's impulses to a dynamic track's velocities and adds them to the step's.
+void finish_substep(RigidTrack& track);
+
+}  // namespace cubespring::bullet

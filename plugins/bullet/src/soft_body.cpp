@@ -1,0 +1,164 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "cubespring/bullet/soft_body.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <btBulletDynamicsCommon.h>
+
+#include "contact_surface.h"
+#include "conversions.h"
+
+namespace cubespring::bullet {
+
+Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& settings) {
+  if (!(settings.contact.friction >= 0.0)) {
+    return Status::error("contact friction " + std::to_string(settings.contact.friction) + " must be >= 0");
+  }
+  if (!(settings.time_step_safety > 0.0 && settings.time_step_safety <= 1.0)) {
+    return Status::error("time step safety " + std::to_string(settings.time_step_safety) + " must be in (0, 1]");
+  }
+  if (settings.integrator == Integrator::kImplicitEuler && !(settings.max_implicit_step > 0.0)) {
+    return Status::error("max implicit step " + std::to_string(settings.max_implicit_step) + " s must be > 0");
+  }
+  Result<Model> model = build_model(settings.lattice);
+  if (!model) return model.status();
+  std::unique_ptr<SoftBody> body(new SoftBody());
+  body->model_ = std::move(model).value();
+  body->state_ = rest_state(body->model_);
+  body->constraints_ = Constraints(body->model_);
+  body->loads_.nodal_forces.setZero(3, body->model_.num_nodes());
+  body->stepper_ = std::make_unique<Stepper>(body->model_);
+  body->step_settings_.integrator = settings.integrator;
+  body->step_settings_.threads = settings.threads;
+  // explicit: the stable step of the body at rest, which its contacts do not stiffen (they move
+  // vertices, they add no springs)
+  body->sub_step_ = settings.integrator == Integrator::kImplicitEuler
+                        ? settings.max_implicit_step
+                        : settings.time_step_safety * max_stable_time_step(body->model_);
+  body->contact_ = settings.contact;
+
+  ContactSurface surface;
+  if (settings.visual_mesh) {
+    Result<Embedding> embedding = embed_mesh(body->model_, *settings.visual_mesh);
+    if (!embedding) return embedding.status();
+    body->embedding_ = std::move(embedding).value();
+    surface = embedded_surface(body->model_, body->embedding_);
+  } else {
+    surface = lattice_boundary_surface(body->model_);
+  }
+  body->surface_offset_ = std::move(surface.offset);
+  body->surface_node_ = std::move(surface.node);
+  body->surface_weight_ = std::move(surface.weight);
+  body->surface_triangles_ = std::move(surface.triangles);
+  const int vertices = static_cast<int>(body->surface_offset_.size()) - 1;
+  body->surface_inverse_mass_.assign(static_cast<std::size_t>(vertices), 0.0);
+  for (int v = 0; v < vertices; ++v) {
+    for (int e = body->surface_offset_[static_cast<std::size_t>(v)]; e < body->surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
+      const double w = body->surface_weight_[static_cast<std::size_t>(e)];
+      body->surface_inverse_mass_[static_cast<std::size_t>(v)] += w * w / body->model_.mass[body->surface_node_[static_cast<std::size_t>(e)]];
+    }
+  }
+  body->update_surface();
+  return body;
+}
+
+void SoftBody::update_surface() {
+  const int vertices = static_cast<int>(surface_offset_.size()) - 1;
+  surface_positions_.setZero(3, vertices);
+  for (int v = 0; v < vertices; ++v) {
+    for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
+      surface_positions_.col(v) += surface_weight_[static_cast<std::size_t>(e)] *
+                                   state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
+    }
+  }
+}
+
+Result<int> SoftBody::anchor(btRigidBody* body, const std::vector<int>& nodes) {
+  if (body == nullptr) return Status::error("anchor: the rigid body is null");
+  if (nodes.empty()) return Status::error("anchor: no nodes given");
+  Anchor anchor;
+  anchor.body = body;
+  anchor.nodes = nodes;
+  anchor.local.resize(3, static_cast<Eigen::Index>(nodes.size()));
+  const btTransform inverse = body->getWorldTransform().inverse();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int node = nodes[i];
+    if (node < 0 || node >= model_.num_nodes()) {
+      return Status::error("anchor: node " + std::to_string(node) + " is not in 0.." + std::to_string(model_.num_nodes() - 1));
+    }
+    anchor.local.col(static_cast<Eigen::Index>(i)) = to_eigen(inverse * to_bt(state_.positions.col(node)));
+  }
+  anchors_.push_back(std::move(anchor));
+  return static_cast<int>(anchors_.size()) - 1;
+}
+
+Result<int> SoftBody::anchor_box(btRigidBody* body, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
+  const std::vector<int> nodes = model_.nodes_in_box(lower, upper);
+  if (nodes.empty()) {
+    std::ostringstream out;
+    out << "anchor: no node rests in the box (" << lower.transpose() << ") .. (" << upper.transpose() << ") m";
+    return Status::error(out.str());
+  }
+  return anchor(body, nodes);
+}
+
+Status SoftBody::detach(int anchor_id) {
+  if (anchor_id < 0 || anchor_id >= static_cast<int>(anchors_.size()) || !anchors_[static_cast<std::size_t>(anchor_id)]) {
+    return Status::error("detach: no anchor " + std::to_string(anchor_id));
+  }
+  // static and kinematic bodies drove their nodes through the constraints; dynamic ones pulled
+  const Anchor& anchor = *anchors_[static_cast<std::size_t>(anchor_id)];
+  if (anchor.body->isStaticOrKinematicObject()) {
+    for (const int node : anchor.nodes) (void)constraints_.release(node);
+  }
+  anchors_[static_cast<std::size_t>(anchor_id)].reset();
+  return {};
+}
+
+std::optional<SoftBody::RayHit> SoftBody::ray_test(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
+  // Moeller-Trumbore against every surface triangle; the nearest hit wins
+  const Eigen::Vector3d direction = to - from;
+  std::optional<RayHit> best;
+  for (Eigen::Index t = 0; t < surface_triangles_.cols(); ++t) {
+    const Eigen::Vector3d a = surface_positions_.col(surface_triangles_(0, t));
+    const Eigen::Vector3d e1 = surface_positions_.col(surface_triangles_(1, t)) - a;
+    const Eigen::Vector3d e2 = surface_positions_.col(surface_triangles_(2, t)) - a;
+    const Eigen::Vector3d p = direction.cross(e2);
+    const double determinant = e1.dot(p);
+    if (std::abs(determinant) < std::numeric_limits<double>::min()) continue;
+    const Eigen::Vector3d s = from - a;
+    const double u = s.dot(p) / determinant;
+    if (u < 0.0 || u > 1.0) continue;
+    const Eigen::Vector3d q = s.cross(e1);
+    const double v = direction.dot(q) / determinant;
+    if (v < 0.0 || u + v > 1.0) continue;
+    const double fraction = e2.dot(q) / determinant;
+    if (fraction < 0.0 || fraction > 1.0 || (best && fraction >= best->fraction)) continue;
+    RayHit hit;
+    hit.triangle = static_cast<int>(t);
+    hit.fraction = fraction;
+    hit.point = from + fraction * direction;
+    // the surface vertex nearest the hit, then its heaviest node
+    const std::array<double, 3> barycentric{1.0 - u - v, u, v};
+    int corner = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (barycentric[static_cast<std::size_t>(k)] > barycentric[static_cast<std::size_t>(corner)]) corner = k;
+    }
+    const int vertex = surface_triangles_(corner, t);
+    double heaviest = -std::numeric_limits<double>::infinity();
+    for (int e = surface_offset_[static_cast<std::size_t>(vertex)]; e < surface_offset_[static_cast<std::size_t>(vertex) + 1]; ++e) {
+      if (surface_weight_[static_cast<std::size_t>(e)] > heaviest) {
+        heaviest = surface_weight_[static_cast<std::size_t>(e)];
+        hit.nearest_node = surface_node_[static_cast<std::size_t>(e)];
+      }
+    }
+    best = hit;
+  }
+  return best;
+}
+
+}  // namespace cubespring::bullet

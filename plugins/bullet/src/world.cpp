@@ -1,0 +1,232 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Soft bodies stepped inside a Bullet world (docs/bullet-plugin.md).
+#include "cubespring/bullet/world.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "conversions.h"
+#include "rigid_distance.h"
+#include "rigid_track.h"
+
+namespace cubespring::bullet {
+
+namespace {
+
+// Collision objects whose broadphase bounds overlap a box.
+class OverlapCollector : public btBroadphaseAabbCallback {
+ public:
+  bool process(const btBroadphaseProxy* proxy) override {
+    const auto* object = static_cast<const btCollisionObject*>(proxy->m_clientObject);
+    if (object != nullptr && !(object->getCollisionFlags() & btCollisionObject::CF_NO_CONTACT_RESPONSE)) {
+      objects.push_back(object);
+    }
+    return true;
+  }
+  std::vector<const btCollisionObject*> objects;
+};
+
+int track_of(std::vector<RigidTrack>& tracks, const btCollisionObject* object) {
+  for (std::size_t i = 0; i < tracks.size(); ++i) {
+    if (tracks[i].object == object) return static_cast<int>(i);
+  }
+  tracks.push_back(start_track(object));
+  return static_cast<int>(tracks.size()) - 1;
+}
+
+}  // namespace
+
+// The soft-body side of one contact: moves vertex v by `push` out of the rigid body and changes
+// its velocity so that it no longer approaches the rigid surface, within Coulomb's cone; returns
+// the impulse given to the tissue [N s] (docs/bullet-plugin.md, section 2).
+class ContactProjector {
+ public:
+  ContactProjector(SoftBody& body, double dt) : body_(body), dt_(dt) {}
+
+  Eigen::Vector3d apply(int vertex, const Eigen::Vector3d& push, const Eigen::Vector3d& rigid_velocity) {
+    const auto begin = static_cast<std::size_t>(body_.surface_offset_[static_cast<std::size_t>(vertex)]);
+    const auto end = static_cast<std::size_t>(body_.surface_offset_[static_cast<std::size_t>(vertex) + 1]);
+    // the vertex's inverse mass over the nodes that may move (driven nodes do not)
+    double inverse_mass = 0.0;
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    for (std::size_t e = begin; e < end; ++e) {
+      const int node = body_.surface_node_[e];
+      const double w = body_.surface_weight_[e];
+      velocity += w * body_.state_.velocities.col(node);
+      if (!body_.constraints_.is_driven(node)) inverse_mass += w * w / body_.model_.mass[node];
+    }
+    if (inverse_mass <= 0.0) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d normal = push.normalized();
+    // the move out of the body counts as velocity over the sub-step (x_new = x + v_new dt), then
+    // whatever still approaches the surface is removed: an inelastic contact
+    Eigen::Vector3d change = push / dt_;
+    const double approach = (velocity + change - rigid_velocity).dot(normal);
+    if (approach < 0.0) change -= approach * normal;
+    const double normal_change = change.dot(normal);
+    Eigen::Vector3d relative = velocity + change - rigid_velocity;
+    const Eigen::Vector3d sliding = relative - relative.dot(normal) * normal;
+    const double limit = body_.contact_.friction * normal_change;
+    const double speed = sliding.norm();
+    if (speed > 0.0) change -= (speed <= limit ? 1.0 : limit / speed) * sliding;
+    for (std::size_t e = begin; e < end; ++e) {
+      const int node = body_.surface_node_[e];
+      if (body_.constraints_.is_driven(node)) continue;
+      const double share = body_.surface_weight_[e] / body_.model_.mass[node] / inverse_mass;
+      body_.state_.positions.col(node) += share * push;
+      body_.state_.velocities.col(node) += share * change;
+    }
+    return change / inverse_mass;
+  }
+
+ private:
+  SoftBody& body_;
+  double dt_;
+};
+
+World::World(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
+             btCollisionConfiguration* configuration)
+    : btDiscreteDynamicsWorld(dispatcher, broadphase, solver, configuration) {}
+
+World::~World() = default;
+
+void World::addSoftBody(SoftBody* body) {
+  if (body != nullptr && std::find(soft_bodies_.begin(), soft_bodies_.end(), body) == soft_bodies_.end()) {
+    soft_bodies_.push_back(body);
+  }
+}
+
+void World::removeSoftBody(SoftBody* body) {
+  soft_bodies_.erase(std::remove(soft_bodies_.begin(), soft_bodies_.end(), body), soft_bodies_.end());
+  const std::lock_guard<std::mutex> lock(wrench_mutex_);
+  for (auto& [object, by_body] : wrenches_) by_body.erase(body);
+}
+
+ContactWrench World::getContactWrench(const btCollisionObject* object) const {
+  const std::lock_guard<std::mutex> lock(wrench_mutex_);
+  ContactWrench total;
+  const auto found = wrenches_.find(object);
+  if (found == wrenches_.end()) return total;
+  for (const auto& [body, wrench] : found->second) {
+    total.force += wrench.force;
+    total.torque += wrench.torque;
+    total.contacts += wrench.contacts;
+    total.time = std::max(total.time, wrench.time);
+  }
+  return total;
+}
+
+void World::internalSingleStepSimulation(btScalar timeStep) {
+  for (SoftBody* body : soft_bodies_) advance_soft_body(*body, static_cast<double>(timeStep));
+  btDiscreteDynamicsWorld::internalSingleStepSimulation(timeStep);
+  time_ += static_cast<double>(timeStep);
+}
+
+void World::advance_soft_body(SoftBody& body, double step_length) {
+  if (!body.last_report_.ok()) return;
+  body.loads_.gravity = to_eigen(getGravity());
+  {
+    const std::lock_guard<std::mutex> lock(wrench_mutex_);
+    for (auto& [object, by_body] : wrenches_) by_body.erase(&body);
+  }
+
+  // rigid objects near the body: its bounds grown by a cell and by how far its nodes may move
+  const double speed = body.state_.velocities.colwise().norm().maxCoeff();
+  const double reach = body.model_.cell_size.maxCoeff() + 2.0 * speed * step_length;
+  OverlapCollector overlaps;
+  getBroadphase()->aabbTest(to_bt(body.surface_positions_.rowwise().minCoeff().array() - reach),
+                            to_bt(body.surface_positions_.rowwise().maxCoeff().array() + reach), overlaps);
+  std::vector<RigidTrack> tracks;
+  for (const btCollisionObject* object : overlaps.objects) track_of(tracks, object);
+  std::vector<int> anchor_track(body.anchors_.size(), -1);
+  for (std::size_t a = 0; a < body.anchors_.size(); ++a) {
+    if (body.anchors_[a]) anchor_track[a] = track_of(tracks, body.anchors_[a]->body);
+  }
+
+  const int substeps = std::max(1, static_cast<int>(std::ceil(step_length / body.sub_step_ - 1e-9)));
+  const double dt = step_length / substeps;
+  const double thickness = 2.0 * body.model_.cell_size.maxCoeff();
+  const Eigen::Matrix3Xd user_forces = body.loads_.nodal_forces;
+  body.step_settings_.time_step = dt;
+  for (int k = 0; k < substeps; ++k) {
+    for (RigidTrack& track : tracks) {
+      track.substep_impulse.setZero();
+      track.substep_angular_impulse.setZero();
+      track.substep_contacts = 0;
+      advance_track(track, k * dt, dt, step_length);
+    }
+    // anchors: static and kinematic bodies drive their nodes; dynamic ones pull them by a spring
+    // as stiff as the sub-step allows, and feel the pull back
+    body.loads_.nodal_forces = user_forces;
+    for (std::size_t a = 0; a < body.anchors_.size(); ++a) {
+      if (!body.anchors_[a]) continue;
+      const Anchor& anchor = *body.anchors_[a];
+      RigidTrack& track = tracks[static_cast<std::size_t>(anchor_track[a])];
+      for (std::size_t i = 0; i < anchor.nodes.size(); ++i) {
+        const int node = anchor.nodes[i];
+        const Eigen::Vector3d target = to_eigen(track.transform * to_bt(anchor.local.col(static_cast<Eigen::Index>(i))));
+        if (!track.dynamic) {
+          (void)body.constraints_.prescribe_position(node, target);
+          continue;
+        }
+        const double mass = body.model_.mass[node];
+        const double stiffness = 0.25 * mass / (dt * dt);
+        const double damping = 2.0 * std::sqrt(stiffness * mass);
+        const Eigen::Vector3d pull = stiffness * (target - body.state_.positions.col(node)) +
+                                     damping * (track.velocity_at(target) - body.state_.velocities.col(node));
+        body.loads_.nodal_forces.col(node) += pull;
+        track.receive(-pull * dt, target);
+      }
+    }
+    const StepReport report = body.stepper_->step(body.model_, body.constraints_, body.loads_, body.step_settings_,
+                                                  body.state_);
+    body.last_report_ = report;
+    if (!report.ok()) {
+      soft_body_error_ = "soft body stopped at t = " + std::to_string(time_ + k * dt) + " s: " + report.message;
+      break;
+    }
+    body.update_surface();
+
+    // contacts: every surface vertex inside a nearby rigid shape is moved out
+    ContactProjector projector(body, dt);
+    for (RigidTrack& track : tracks) {
+      const btCollisionShape& shape = *track.object->getCollisionShape();
+      btVector3 low;
+      btVector3 high;
+      shape.getAabb(track.transform, low, high);
+      for (int v = 0; v < body.surface_positions_.cols(); ++v) {
+        const Eigen::Vector3d x = body.surface_positions_.col(v);
+        if ((x.array() < to_eigen(low).array()).any() || (x.array() > to_eigen(high).array()).any()) continue;
+        const std::optional<Eigen::Vector3d> push = penetration_push(shape, track.transform, x, 0.0, thickness);
+        if (!push || push->squaredNorm() == 0.0) continue;
+        const Eigen::Vector3d contact_point = x + *push;
+        const Eigen::Vector3d impulse = projector.apply(v, *push, track.velocity_at(contact_point));
+        track.receive(-impulse, contact_point);
+      }
+      body.update_surface();
+    }
+    for (RigidTrack& track : tracks) finish_substep(track);
+
+    // the mean over the step so far: a single sub-step's impulse flickers as vertices touch and
+    // leave, its mean over the step is the force that holds the body
+    const std::lock_guard<std::mutex> lock(wrench_mutex_);
+    for (const RigidTrack& track : tracks) {
+      ContactWrench& wrench = wrenches_[track.object][&body];
+      wrench.force = track.impulse / ((k + 1) * dt);
+      wrench.torque = track.angular_impulse / ((k + 1) * dt);
+      wrench.contacts = track.substep_contacts;
+      wrench.time = time_ + (k + 1) * dt;
+    }
+  }
+  body.loads_.nodal_forces = user_forces;
+
+  // what the tissue did to the dynamic bodies over the step, before Bullet's own step
+  for (RigidTrack& track : tracks) {
+    if (!track.dynamic || (track.impulse.isZero() && track.angular_impulse.isZero())) continue;
+    track.body->applyCentralImpulse(to_bt(track.impulse));
+    track.body->applyTorqueImpulse(to_bt(track.angular_impulse));
+    track.body->activate(true);
+  }
+}
+
+}  // namespace cubespring::bullet
