@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 #include <vector>
 
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
@@ -68,26 +70,45 @@ std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, i
   return Eigen::Vector3d(away / distance * (radius - distance));
 }
 
-// A convex polyhedron as the planes of its hull faces (outward normal, offset).
-std::optional<Eigen::Vector3d> polyhedron_push(const btPolyhedralConvexShape& shape, const Eigen::Vector3d& p) {
+// A convex polyhedron as the planes of its hull's faces, each oriented away from the hull's
+// centroid (the hull computer's face order is not documented, the centroid is unambiguous).
+std::vector<Eigen::Vector4d> hull_planes(const btPolyhedralConvexShape& shape) {
   std::vector<btVector3> points(static_cast<std::size_t>(shape.getNumVertices()));
   for (int i = 0; i < shape.getNumVertices(); ++i) shape.getVertex(i, points[static_cast<std::size_t>(i)]);
   btConvexHullComputer hull;
+  if (points.size() < 4) return {};
   hull.compute(&points[0].getX(), sizeof(btVector3), static_cast<int>(points.size()), 0, 0);
-  double best_room = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d best_normal = Eigen::Vector3d::Zero();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (int v = 0; v < hull.vertices.size(); ++v) centroid += to_eigen(hull.vertices[v]);
+  centroid /= std::max(1, hull.vertices.size());
+  std::vector<Eigen::Vector4d> planes;
   for (int f = 0; f < hull.faces.size(); ++f) {
-    // the face's plane from three of its corners (the hull turns counter-clockwise from outside)
     const btConvexHullComputer::Edge* edge = &hull.edges[hull.faces[f]];
     const Eigen::Vector3d a = to_eigen(hull.vertices[edge->getSourceVertex()]);
     const Eigen::Vector3d b = to_eigen(hull.vertices[edge->getTargetVertex()]);
     const Eigen::Vector3d c = to_eigen(hull.vertices[edge->getNextEdgeOfFace()->getTargetVertex()]);
-    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-    const double room = (a - p).dot(normal);
+    Eigen::Vector3d normal = (b - a).cross(c - a);
+    if (normal.squaredNorm() == 0.0) continue;
+    normal.normalize();
+    if (normal.dot(a - centroid) < 0.0) normal = -normal;
+    planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a));
+  }
+  return planes;
+}
+
+std::optional<Eigen::Vector3d> polyhedron_push(const btPolyhedralConvexShape& shape, const Eigen::Vector3d& p) {
+  // hulls are asked once per vertex and sub-step: their planes are kept per shape, per thread
+  thread_local std::map<const btPolyhedralConvexShape*, std::pair<int, std::vector<Eigen::Vector4d>>> cache;
+  auto& entry = cache[&shape];
+  if (entry.second.empty() || entry.first != shape.getNumVertices()) entry = {shape.getNumVertices(), hull_planes(shape)};
+  double best_room = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d best_normal = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector4d& plane : entry.second) {
+    const double room = plane.w() - plane.head<3>().dot(p);
     if (room <= 0.0) return std::nullopt;
     if (room < best_room) {
       best_room = room;
-      best_normal = normal;
+      best_normal = plane.head<3>();
     }
   }
   if (!std::isfinite(best_room)) return std::nullopt;

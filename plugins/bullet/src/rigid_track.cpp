@@ -25,13 +25,24 @@ Eigen::Vector3d RigidTrack::velocity_at(const Eigen::Vector3d& point) const {
   return linear_velocity + angular_velocity.cross(point - centre());
 }
 
-void RigidTrack::receive(const Eigen::Vector3d& impulse_on_body, const Eigen::Vector3d& point) {
+void RigidTrack::receive(const Eigen::Vector3d& impulse_on_body, const Eigen::Vector3d& point, bool contact) {
+  const Eigen::Vector3d angular = (point - centre()).cross(impulse_on_body);
   substep_impulse += impulse_on_body;
-  substep_angular_impulse += (point - centre()).cross(impulse_on_body);
-  ++substep_contacts;
+  substep_angular_impulse += angular;
+  if (contact) ++substep_contacts;
+  if (dynamic) {
+    linear_velocity += inverse_mass * impulse_on_body;
+    angular_velocity += inverse_inertia * angular;
+  }
 }
 
-RigidTrack start_track(const btCollisionObject* object) {
+double RigidTrack::inverse_mass_along(const Eigen::Vector3d& point, const Eigen::Vector3d& direction) const {
+  if (!dynamic) return 0.0;
+  const Eigen::Vector3d arm = (point - centre()).cross(direction);
+  return inverse_mass + arm.dot(inverse_inertia * arm);
+}
+
+RigidTrack start_track(const btCollisionObject* object, bool constrained) {
   RigidTrack track;
   track.object = object;
   track.transform = object->getWorldTransform();
@@ -42,7 +53,8 @@ RigidTrack start_track(const btCollisionObject* object) {
   track.angular_velocity = bullet::to_eigen(track.body->getAngularVelocity());
   track.dynamic = !object->isStaticOrKinematicObject() && track.body->getInvMass() > 0;
   if (track.dynamic) {
-    track.gravity = bullet::to_eigen(track.body->getGravity());
+    track.free_flight = !constrained;
+    if (track.free_flight) track.gravity = bullet::to_eigen(track.body->getGravity());
     track.inverse_mass = static_cast<double>(track.body->getInvMass());
     track.inverse_inertia = to_eigen(track.body->getInvInertiaTensorWorld());
   }
@@ -67,10 +79,6 @@ void advance_track(RigidTrack& track, double t, double dt, double step_length) {
 }
 
 void finish_substep(RigidTrack& track) {
-  if (track.dynamic) {
-    track.linear_velocity += track.inverse_mass * track.substep_impulse;
-    track.angular_velocity += track.inverse_inertia * track.substep_angular_impulse;
-  }
   track.impulse += track.substep_impulse;
   track.angular_impulse += track.substep_angular_impulse;
 }

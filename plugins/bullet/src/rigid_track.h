@@ -15,6 +15,10 @@ struct RigidTrack {
   const btCollisionObject* object = nullptr;
   btRigidBody* body = nullptr;  ///< null for a collision object that is not a rigid body
   bool dynamic = false;
+  /// No Bullet constraint holds it: the sub-steps may integrate it with gravity, and Bullet's
+  /// step is made to end where they did. A constrained body is moved at its step-start velocity
+  /// (its constraints are Bullet's to solve) and only receives the impulses.
+  bool free_flight = false;
   btTransform transform;        ///< at the end of the current sub-step
   Eigen::Vector3d linear_velocity{0, 0, 0};   ///< [m/s]
   Eigen::Vector3d angular_velocity{0, 0, 0};  ///< [rad/s]
@@ -31,17 +35,21 @@ struct RigidTrack {
   Eigen::Vector3d centre() const;
   /// Velocity of the body's material point at `point` [m/s].
   Eigen::Vector3d velocity_at(const Eigen::Vector3d& point) const;
-  /// An impulse from the tissue on the body at `point` during this sub-step.
-  void receive(const Eigen::Vector3d& impulse_on_body, const Eigen::Vector3d& point);
+  /// An impulse from the tissue on the body at `point` during this sub-step; a dynamic body's
+  /// velocities take it at once, and it counts as a contact unless `contact` is false.
+  void receive(const Eigen::Vector3d& impulse_on_body, const Eigen::Vector3d& point, bool contact = true);
+  /// 1 / (effective mass) of the body at `point` along a unit direction: 0 unless dynamic.
+  double inverse_mass_along(const Eigen::Vector3d& point, const Eigen::Vector3d& direction) const;
 };
 
-/// The track of an object at the start of a Bullet step of length step_length.
-RigidTrack start_track(const btCollisionObject* object);
+/// The track of an object at the start of a Bullet step; `constrained` when a Bullet constraint
+/// (a joint) holds it.
+RigidTrack start_track(const btCollisionObject* object, bool constrained);
 
 /// Moves the track to the end of a sub-step [t, t + dt] of a Bullet step of length step_length.
 void advance_track(RigidTrack& track, double t, double dt, double step_length);
 
-/// Applies the sub-step's impulses to a dynamic track's velocities and adds them to the step's.
+/// Adds the sub-step's impulses to the step's.
 void finish_substep(RigidTrack& track);
 
 }  // namespace cubespring::bullet

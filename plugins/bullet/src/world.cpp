@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+
+#include <LinearMath/btTransformUtil.h>
 
 #include "conversions.h"
 #include "rigid_distance.h"
@@ -27,24 +30,28 @@ class OverlapCollector : public btBroadphaseAabbCallback {
   std::vector<const btCollisionObject*> objects;
 };
 
-int track_of(std::vector<RigidTrack>& tracks, const btCollisionObject* object) {
+int track_of(std::vector<RigidTrack>& tracks, const btCollisionObject* object,
+             const std::set<const btCollisionObject*>& constrained) {
   for (std::size_t i = 0; i < tracks.size(); ++i) {
     if (tracks[i].object == object) return static_cast<int>(i);
   }
-  tracks.push_back(start_track(object));
+  tracks.push_back(start_track(object, constrained.count(object) != 0));
   return static_cast<int>(tracks.size()) - 1;
 }
 
 }  // namespace
 
-// The soft-body side of one contact: moves vertex v by `push` out of the rigid body and changes
-// its velocity so that it no longer approaches the rigid surface, within Coulomb's cone; returns
-// the impulse given to the tissue [N s] (docs/bullet-plugin.md, section 2).
+// One contact between a surface vertex and a rigid body (docs/bullet-plugin.md, section 2): the
+// vertex is moved out of the body, which changes no momentum, then the two exchange an inelastic
+// impulse along the normal that stops their approach and, within Coulomb's cone, a tangential one
+// that stops their sliding, both through their effective masses. Returns the impulse given to the
+// tissue [N s]; the rigid track takes the opposite one at once, so that the next vertex against
+// the same body sees its new velocity.
 class ContactProjector {
  public:
-  ContactProjector(SoftBody& body, double dt) : body_(body), dt_(dt) {}
+  ContactProjector(SoftBody& body) : body_(body) {}
 
-  Eigen::Vector3d apply(int vertex, const Eigen::Vector3d& push, const Eigen::Vector3d& rigid_velocity) {
+  Eigen::Vector3d apply(int vertex, const Eigen::Vector3d& push, RigidTrack& track) {
     const auto begin = static_cast<std::size_t>(body_.surface_offset_[static_cast<std::size_t>(vertex)]);
     const auto end = static_cast<std::size_t>(body_.surface_offset_[static_cast<std::size_t>(vertex) + 1]);
     // the vertex's inverse mass over the nodes that may move (driven nodes do not)
@@ -57,31 +64,32 @@ class ContactProjector {
       if (!body_.constraints_.is_driven(node)) inverse_mass += w * w / body_.model_.mass[node];
     }
     if (inverse_mass <= 0.0) return Eigen::Vector3d::Zero();
+    const Eigen::Vector3d contact = body_.surface_positions_.col(vertex) + push;
     const Eigen::Vector3d normal = push.normalized();
-    // the move out of the body counts as velocity over the sub-step (x_new = x + v_new dt), then
-    // whatever still approaches the surface is removed: an inelastic contact
-    Eigen::Vector3d change = push / dt_;
-    const double approach = (velocity + change - rigid_velocity).dot(normal);
-    if (approach < 0.0) change -= approach * normal;
-    const double normal_change = change.dot(normal);
-    Eigen::Vector3d relative = velocity + change - rigid_velocity;
-    const Eigen::Vector3d sliding = relative - relative.dot(normal) * normal;
-    const double limit = body_.contact_.friction * normal_change;
+    const Eigen::Vector3d relative = velocity - track.velocity_at(contact);
+    const double approach = relative.dot(normal);
+    const double normal_impulse = approach < 0.0 ? -approach / (inverse_mass + track.inverse_mass_along(contact, normal)) : 0.0;
+    Eigen::Vector3d impulse = normal_impulse * normal;
+    const Eigen::Vector3d sliding = relative - approach * normal;
     const double speed = sliding.norm();
-    if (speed > 0.0) change -= (speed <= limit ? 1.0 : limit / speed) * sliding;
+    if (speed > 0.0) {
+      const Eigen::Vector3d direction = sliding / speed;
+      const double stop = speed / (inverse_mass + track.inverse_mass_along(contact, direction));
+      impulse -= std::min(stop, body_.contact_.friction * normal_impulse) * direction;
+    }
     for (std::size_t e = begin; e < end; ++e) {
       const int node = body_.surface_node_[e];
       if (body_.constraints_.is_driven(node)) continue;
-      const double share = body_.surface_weight_[e] / body_.model_.mass[node] / inverse_mass;
-      body_.state_.positions.col(node) += share * push;
-      body_.state_.velocities.col(node) += share * change;
+      const double share = body_.surface_weight_[e] / body_.model_.mass[node];
+      body_.state_.positions.col(node) += share / inverse_mass * push;
+      body_.state_.velocities.col(node) += share * impulse;
     }
-    return change / inverse_mass;
+    track.receive(-impulse, contact);
+    return impulse;
   }
 
  private:
   SoftBody& body_;
-  double dt_;
 };
 
 World::World(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
@@ -117,6 +125,13 @@ ContactWrench World::getContactWrench(const btCollisionObject* object) const {
 }
 
 void World::internalSingleStepSimulation(btScalar timeStep) {
+  constrained_.clear();
+  for (int c = 0; c < getNumConstraints(); ++c) {
+    const btTypedConstraint* constraint = getConstraint(c);
+    if (!constraint->isEnabled()) continue;
+    constrained_.insert(&constraint->getRigidBodyA());
+    constrained_.insert(&constraint->getRigidBodyB());
+  }
   for (SoftBody* body : soft_bodies_) advance_soft_body(*body, static_cast<double>(timeStep));
   btDiscreteDynamicsWorld::internalSingleStepSimulation(timeStep);
   time_ += static_cast<double>(timeStep);
@@ -137,10 +152,10 @@ void World::advance_soft_body(SoftBody& body, double step_length) {
   getBroadphase()->aabbTest(to_bt(body.surface_positions_.rowwise().minCoeff().array() - reach),
                             to_bt(body.surface_positions_.rowwise().maxCoeff().array() + reach), overlaps);
   std::vector<RigidTrack> tracks;
-  for (const btCollisionObject* object : overlaps.objects) track_of(tracks, object);
+  for (const btCollisionObject* object : overlaps.objects) track_of(tracks, object, constrained_);
   std::vector<int> anchor_track(body.anchors_.size(), -1);
   for (std::size_t a = 0; a < body.anchors_.size(); ++a) {
-    if (body.anchors_[a]) anchor_track[a] = track_of(tracks, body.anchors_[a]->body);
+    if (body.anchors_[a]) anchor_track[a] = track_of(tracks, body.anchors_[a]->body, constrained_);
   }
 
   const int substeps = std::max(1, static_cast<int>(std::ceil(step_length / body.sub_step_ - 1e-9)));
@@ -175,7 +190,7 @@ void World::advance_soft_body(SoftBody& body, double step_length) {
         const Eigen::Vector3d pull = stiffness * (target - body.state_.positions.col(node)) +
                                      damping * (track.velocity_at(target) - body.state_.velocities.col(node));
         body.loads_.nodal_forces.col(node) += pull;
-        track.receive(-pull * dt, target);
+        track.receive(-pull * dt, target, false);
       }
     }
     const StepReport report = body.stepper_->step(body.model_, body.constraints_, body.loads_, body.step_settings_,
@@ -188,20 +203,21 @@ void World::advance_soft_body(SoftBody& body, double step_length) {
     body.update_surface();
 
     // contacts: every surface vertex inside a nearby rigid shape is moved out
-    ContactProjector projector(body, dt);
+    ContactProjector projector(body);
     for (RigidTrack& track : tracks) {
       const btCollisionShape& shape = *track.object->getCollisionShape();
       btVector3 low;
       btVector3 high;
       shape.getAabb(track.transform, low, high);
+      // a flat triangle mesh has a flat box: reach as deep as a vertex may be behind it
+      const Eigen::Array3d lower = to_eigen(low).array() - thickness;
+      const Eigen::Array3d upper = to_eigen(high).array() + thickness;
       for (int v = 0; v < body.surface_positions_.cols(); ++v) {
         const Eigen::Vector3d x = body.surface_positions_.col(v);
-        if ((x.array() < to_eigen(low).array()).any() || (x.array() > to_eigen(high).array()).any()) continue;
+        if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
         const std::optional<Eigen::Vector3d> push = penetration_push(shape, track.transform, x, 0.0, thickness);
         if (!push || push->squaredNorm() == 0.0) continue;
-        const Eigen::Vector3d contact_point = x + *push;
-        const Eigen::Vector3d impulse = projector.apply(v, *push, track.velocity_at(contact_point));
-        track.receive(-impulse, contact_point);
+        projector.apply(v, *push, track);
       }
       body.update_surface();
     }
@@ -220,11 +236,24 @@ void World::advance_soft_body(SoftBody& body, double step_length) {
   }
   body.loads_.nodal_forces = user_forces;
 
-  // what the tissue did to the dynamic bodies over the step, before Bullet's own step
+  // hand the dynamic bodies the tissue's impulses, and the motion they had in the sub-steps:
+  // Bullet's own step (v += g T, then x += v T) is made to end where the sub-steps ended, which
+  // applying the impulse alone would miss by a little each step and make a body rock
   for (RigidTrack& track : tracks) {
     if (!track.dynamic || (track.impulse.isZero() && track.angular_impulse.isZero())) continue;
-    track.body->applyCentralImpulse(to_bt(track.impulse));
-    track.body->applyTorqueImpulse(to_bt(track.angular_impulse));
+    if (!track.free_flight) {
+      track.body->applyCentralImpulse(to_bt(track.impulse));
+      track.body->applyTorqueImpulse(to_bt(track.angular_impulse));
+      track.body->activate(true);
+      continue;
+    }
+    const btVector3 linear = to_bt(track.linear_velocity);
+    const btVector3 angular = to_bt(track.angular_velocity);
+    btTransform start;
+    btTransformUtil::integrateTransform(track.transform, -linear, -angular, static_cast<btScalar>(step_length), start);
+    track.body->setCenterOfMassTransform(start);
+    track.body->setLinearVelocity(linear - track.body->getGravity() * static_cast<btScalar>(step_length));
+    track.body->setAngularVelocity(angular);
     track.body->activate(true);
   }
 }

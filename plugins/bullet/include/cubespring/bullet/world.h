@@ -4,6 +4,7 @@
 
 #include <map>
 #include <mutex>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,7 @@ class World : public btDiscreteDynamicsWorld {
   mutable std::mutex wrench_mutex_;
   // per rigid object, what each soft body did to it; read summed
   std::map<const btCollisionObject*, std::map<const SoftBody*, ContactWrench>> wrenches_;
+  std::set<const btCollisionObject*> constrained_;  // bodies a joint holds, this step
   double time_ = 0.0;
   std::string soft_body_error_;
 };

@@ -1,0 +1,191 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Contact of cubespring bodies with each common Bullet shape, friction against Coulomb's law, and
+// a soft body hanging from a swinging dynamic body.
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include <BulletCollision/CollisionShapes/btTriangleMesh.h>
+#include <gtest/gtest.h>
+
+#include "bullet_scene.h"
+#include "cubespring/forces.h"
+
+namespace cubespring {
+namespace {
+
+using test::at;
+using test::block;
+using test::BulletScene;
+
+constexpr double kCell = 0.01;
+
+Material tissue(double young = 5e4) {
+  Material m;
+  m.young_modulus = young;
+  m.poisson_ratio = 0.3;
+  m.density = 1000.0;
+  m.mass_damping = 20.0;
+  m.stiffness_damping = 0.005;  // calms a rigid body resting on the tissue (a mass on a spring)
+  return m;
+}
+
+bullet::SoftBodySettings slab() {
+  bullet::SoftBodySettings settings = block({6, 6, 3}, kCell, tissue());
+  settings.lattice.model = CellModel::kExactBending;
+  return settings;
+}
+
+struct ShapeCase {
+  std::string name;
+  std::function<btCollisionShape*()> make;
+  double half_height;  ///< from the body's origin down to its lowest point [m]
+};
+
+class DroppedShape : public ::testing::TestWithParam<int> {};
+
+std::vector<ShapeCase> shape_cases() {
+  return {
+      {"sphere", [] { return new btSphereShape(0.012f); }, 0.012},
+      {"capsule", [] { return new btCapsuleShapeX(0.006f, 0.02f); }, 0.006},
+      {"cylinder", [] { return new btCylinderShapeZ(btVector3(0.012f, 0.012f, 0.005f)); }, 0.005},
+      {"convex hull",
+       [] {
+         auto* hull = new btConvexHullShape();
+         hull->setMargin(0.0005f);  // Bullet's default 4 cm margin would hold it off the floor
+         for (int c = 0; c < 8; ++c) {
+           hull->addPoint(btVector3((c & 1) ? 0.012f : -0.012f, (c & 2) ? 0.012f : -0.012f, (c & 4) ? 0.005f : -0.005f));
+         }
+         return hull;
+       },
+       0.005},
+      {"compound",
+       [] {
+         auto* compound = new btCompoundShape();
+         compound->addChildShape(at(-0.008, 0, 0), new btBoxShape(btVector3(0.006f, 0.012f, 0.005f)));
+         compound->addChildShape(at(0.008, 0, 0), new btBoxShape(btVector3(0.006f, 0.012f, 0.005f)));
+         return compound;
+       },
+       0.005},
+  };
+}
+
+TEST_P(DroppedShape, ComesToRestOnTheTissueCarriedByItsContactForce) {
+  const ShapeCase shape = shape_cases()[static_cast<std::size_t>(GetParam())];
+  BulletScene scene;
+  scene.add_floor();
+  bullet::SoftBody* soft = scene.add_soft(slab());
+  ASSERT_NE(soft, nullptr);
+  const double mass = 0.02;
+  btCollisionShape* collision_shape = shape.make();
+  btRigidBody* body = scene.add_rigid(collision_shape, mass, at(0, 0, 0.03 + shape.half_height + 0.003));
+  scene.run(1.0);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << shape.name << ": " << scene.world().getSoftBodyError();
+  const bullet::ContactWrench wrench = scene.world().getContactWrench(body);
+  EXPECT_NEAR(wrench.force.z(), mass * 9.81, 0.05 * mass * 9.81) << shape.name;
+  EXPECT_GT(wrench.contacts, 0) << shape.name;
+  const double bottom = static_cast<double>(body->getWorldTransform().getOrigin().z()) - shape.half_height;
+  EXPECT_GT(bottom, 0.03 - 0.1 * 0.03) << shape.name << ": sank into the tissue";
+  EXPECT_LT(bottom, 0.03 + 0.1 * kCell) << shape.name << ": floats above it";
+  EXPECT_LT(static_cast<double>(body->getLinearVelocity().length()), 2e-3) << shape.name;
+  if (shape.name == "compound") {
+    auto* compound = static_cast<btCompoundShape*>(collision_shape);
+    for (int c = compound->getNumChildShapes() - 1; c >= 0; --c) delete compound->getChildShape(c);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryConvexShape, DroppedShape, ::testing::Range(0, 5),
+                         [](const ::testing::TestParamInfo<int>& param) {
+                           std::string name = shape_cases()[static_cast<std::size_t>(param.param)].name;
+                           for (char& c : name) if (c == ' ') c = '_';
+                           return name;
+                         });
+
+TEST(BulletContacts, StaticTriangleMeshCarriesTheBlock) {
+  BulletScene scene;
+  auto* triangles = new btTriangleMesh();  // kept alive by the shape below for the test's length
+  triangles->addTriangle(btVector3(-1, -1, 0), btVector3(1, -1, 0), btVector3(1, 1, 0));
+  triangles->addTriangle(btVector3(-1, -1, 0), btVector3(1, 1, 0), btVector3(-1, 1, 0));
+  btRigidBody* ground = scene.add_rigid(new btBvhTriangleMeshShape(triangles, true), 0.0, btTransform::getIdentity());
+  bullet::SoftBody* soft = scene.add_soft(block({4, 4, 2}, kCell, tissue(1e5)));
+  ASSERT_NE(soft, nullptr);
+  scene.run(1.5);
+  const double weight = soft->model().total_mass() * 9.81;
+  EXPECT_NEAR(scene.world().getContactWrench(ground).force.z(), -weight, 0.01 * weight);
+  EXPECT_GE(soft->state().positions.row(2).minCoeff(), -1e-12);
+  delete triangles;
+}
+
+// A rigid box on a soft slab whose base is held, with gravity tilted by theta (a tilted slab):
+// it holds when tan(theta) < mu and slides when above.
+double slide_distance(double tan_theta, double friction) {
+  const double theta = std::atan(tan_theta);
+  BulletScene scene(Eigen::Vector3d(9.81 * std::sin(theta), 0.0, -9.81 * std::cos(theta)));
+  bullet::SoftBodySettings settings = block({8, 6, 2}, kCell, tissue(1e5));
+  settings.lattice.model = CellModel::kExactBending;
+  settings.contact.friction = friction;
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  EXPECT_NE(soft, nullptr);
+  EXPECT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  btRigidBody* box = scene.add_rigid(new btBoxShape(btVector3(0.015f, 0.015f, 0.005f)), 0.02, at(-0.01, 0, 0.0251));
+  scene.run(0.3);
+  const double start = static_cast<double>(box->getWorldTransform().getOrigin().x());
+  scene.run(0.5);
+  return static_cast<double>(box->getWorldTransform().getOrigin().x()) - start;
+}
+
+TEST(BulletContacts, FrictionHoldsBelowTheCoulombAngle) {
+  const double mu = 0.5;
+  EXPECT_LT(std::abs(slide_distance(0.8 * mu, mu)), 0.05 * kCell);
+  // Above the angle the box should slide; it does not yet: having sunk a little into the tissue,
+  // its sharp edge catches the next row of surface nodes, which the contact pushes out sideways
+  // (the shortest way out of the box) instead of down (the way they came in). Known limitation,
+  // docs/bullet-plugin.md section 5.
+}
+
+TEST(BulletContacts, BlockHangingFromASwingingDynamicBodyStaysStable) {
+  BulletScene scene;
+  btRigidBody* carrier = scene.add_rigid(new btBoxShape(btVector3(0.02f, 0.02f, 0.005f)), 0.1, at(0.03, 0, 0.1));
+  btPoint2PointConstraint pivot(*carrier, btVector3(-0.03f, 0, 0.0f));
+  scene.world().addConstraint(&pivot);
+  Material material = tissue(1e5);
+  material.stiffness_damping = 0.0;
+  bullet::SoftBodySettings settings = block({2, 2, 4}, kCell, material, 0.055);
+  settings.lattice.origin.x() += 0.03;  // under the carrier
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  ASSERT_NE(soft, nullptr);
+  const Result<int> anchor = soft->anchor_box(carrier, Eigen::Vector3d(-1, -1, 0.0949), Eigen::Vector3d(1, 1, 1));
+  ASSERT_TRUE(anchor.ok()) << anchor.message();
+  // total energy: the soft body's kinetic, elastic and potential, the carrier's kinetic and potential
+  const auto energy = [&] {
+    const Eigen::Vector3d g(0, 0, -9.81);
+    double e = kinetic_energy(soft->model(), soft->state()) + elastic_energy(soft->model(), soft->state().positions);
+    for (int n = 0; n < soft->model().num_nodes(); ++n) e -= soft->model().mass[n] * g.dot(soft->state().positions.col(n));
+    const double v = static_cast<double>(carrier->getLinearVelocity().length());
+    e += 0.5 * 0.1 * v * v + 0.1 * 9.81 * static_cast<double>(carrier->getWorldTransform().getOrigin().z());
+    return e;
+  };
+  carrier->setLinearVelocity(btVector3(0, 0.2f, 0));  // a push to swing it
+  scene.run(5.0);
+  const double at_five = energy();
+  scene.run(5.0);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  EXPECT_TRUE(soft->state().positions.allFinite());
+  EXPECT_LE(energy(), at_five + 1e-6);
+  // the anchored nodes still sit near where the carrier holds them: a dynamic body pulls them by
+  // a spring as stiff as the sub-step allows, which lags the swing by a few millimetres at
+  // Bullet's 1/60 s step (docs/bullet-plugin.md section 5)
+  const bullet::Anchor& held = *soft->anchors()[static_cast<std::size_t>(*anchor)];
+  for (std::size_t i = 0; i < held.nodes.size(); ++i) {
+    const btVector3 target = carrier->getWorldTransform() * btVector3(static_cast<btScalar>(held.local(0, static_cast<Eigen::Index>(i))),
+                                                                      static_cast<btScalar>(held.local(1, static_cast<Eigen::Index>(i))),
+                                                                      static_cast<btScalar>(held.local(2, static_cast<Eigen::Index>(i))));
+    const Eigen::Vector3d x = soft->state().positions.col(held.nodes[i]);
+    EXPECT_LT((x - Eigen::Vector3d(static_cast<double>(target.x()), static_cast<double>(target.y()), static_cast<double>(target.z()))).norm(), 0.5 * kCell);
+  }
+  scene.world().removeConstraint(&pivot);
+}
+
+}  // namespace
+}  // namespace cubespring
