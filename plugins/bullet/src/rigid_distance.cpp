@@ -138,7 +138,7 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       const auto& cylinder = static_cast<const btCylinderShape&>(convex);
       const int axis = cylinder.getUpAxis();
       const Eigen::Vector3d half = to_eigen(cylinder.getHalfExtentsWithMargin());
-      push = cylinder_push(half[(axis + 1) % 3], half[axis], axis, p);
+      push = cylinder_push(static_cast<double>(cylinder.getRadius()), half[axis], axis, p);
       break;
     }
     default:

@@ -54,14 +54,6 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->surface_node_ = std::move(surface.node);
   body->surface_weight_ = std::move(surface.weight);
   body->surface_triangles_ = std::move(surface.triangles);
-  const int vertices = static_cast<int>(body->surface_offset_.size()) - 1;
-  body->surface_inverse_mass_.assign(static_cast<std::size_t>(vertices), 0.0);
-  for (int v = 0; v < vertices; ++v) {
-    for (int e = body->surface_offset_[static_cast<std::size_t>(v)]; e < body->surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
-      const double w = body->surface_weight_[static_cast<std::size_t>(e)];
-      body->surface_inverse_mass_[static_cast<std::size_t>(v)] += w * w / body->model_.mass[body->surface_node_[static_cast<std::size_t>(e)]];
-    }
-  }
   body->update_surface();
   return body;
 }

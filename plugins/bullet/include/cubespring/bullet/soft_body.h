@@ -119,7 +119,6 @@ class SoftBody {
   std::vector<int> surface_offset_;  // num_vertices + 1
   std::vector<int> surface_node_;
   std::vector<double> surface_weight_;
-  std::vector<double> surface_inverse_mass_;  // sum of weight^2 / node mass, per vertex
   Eigen::Matrix3Xi surface_triangles_;
   Eigen::Matrix3Xd surface_positions_;
   Embedding embedding_;
