@@ -41,14 +41,18 @@ struct ShapeCase {
   std::string name;
   std::function<btCollisionShape*()> make;
   double half_height;  ///< from the body's origin down to its lowest point [m]
+  /// How far a round body settles between the surface's vertices, which are where contact acts:
+  /// r - sqrt(r^2 - s^2) for vertices s apart from its lowest point [m]
+  double settles_between_vertices = 0.0;
 };
 
 class DroppedShape : public ::testing::TestWithParam<int> {};
 
 std::vector<ShapeCase> shape_cases() {
   return {
-      {"sphere", [] { return new btSphereShape(0.012f); }, 0.012},
-      {"capsule", [] { return new btCapsuleShapeX(0.006f, 0.02f); }, 0.006},
+      // between 4 vertices 0.5 * sqrt(2) cells away, and between 2 rows half a cell away
+      {"sphere", [] { return new btSphereShape(0.012f); }, 0.012, 0.012 - std::sqrt(0.012 * 0.012 - 0.5 * 0.01 * 0.01)},
+      {"capsule", [] { return new btCapsuleShapeX(0.006f, 0.02f); }, 0.006, 0.006 - std::sqrt(0.006 * 0.006 - 0.005 * 0.005)},
       {"cylinder", [] { return new btCylinderShapeZ(btVector3(0.012f, 0.012f, 0.005f)); }, 0.005},
       {"convex hull",
        [] {
@@ -80,13 +84,15 @@ TEST_P(DroppedShape, ComesToRestOnTheTissueCarriedByItsContactForce) {
   const double mass = 0.02;
   btCollisionShape* collision_shape = shape.make();
   btRigidBody* body = scene.add_rigid(collision_shape, mass, at(0, 0, 0.03 + shape.half_height + 0.003));
-  scene.run(1.0);
+  // 2.5 s: a sphere first balances on the node under it, then settles between four (the surface
+  // meets rigid bodies at its vertices)
+  scene.run(2.5);
   ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << shape.name << ": " << scene.world().getSoftBodyError();
   const bullet::ContactWrench wrench = scene.world().getContactWrench(body);
   EXPECT_NEAR(wrench.force.z(), mass * 9.81, 0.05 * mass * 9.81) << shape.name;
   EXPECT_GT(wrench.contacts, 0) << shape.name;
   const double bottom = static_cast<double>(body->getWorldTransform().getOrigin().z()) - shape.half_height;
-  EXPECT_GT(bottom, 0.03 - 0.1 * 0.03) << shape.name << ": sank into the tissue";
+  EXPECT_GT(bottom, 0.03 - shape.settles_between_vertices - 0.1 * kCell) << shape.name << ": sank into the tissue";
   EXPECT_LT(bottom, 0.03 + 0.1 * kCell) << shape.name << ": floats above it";
   EXPECT_LT(static_cast<double>(body->getLinearVelocity().length()), 2e-3) << shape.name;
   if (shape.name == "compound") {
@@ -185,6 +191,54 @@ TEST(BulletContacts, BlockHangingFromASwingingDynamicBodyStaysStable) {
     EXPECT_LT((x - Eigen::Vector3d(static_cast<double>(target.x()), static_cast<double>(target.y()), static_cast<double>(target.z()))).norm(), 0.5 * kCell);
   }
   scene.world().removeConstraint(&pivot);
+}
+
+}  // namespace
+}  // namespace cubespring
+
+namespace cubespring {
+namespace {
+
+// A kinematic capsule a quarter cell thick, pressed half a cell into a block and swept 10 cells
+// along it at 1 m/s in 1 ms steps: the tip must not pass between the surface's vertices.
+double deepest_sweep_penetration(bool face_contacts) {
+  BulletScene scene(Eigen::Vector3d::Zero());
+  scene.add_floor();
+  bullet::SoftBodySettings settings = block({14, 4, 3}, kCell, tissue(1e5));
+  settings.lattice.model = CellModel::kExactBending;
+  settings.contact.face_contacts = face_contacts;
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  EXPECT_NE(soft, nullptr);
+  EXPECT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  const double radius = 0.25 * kCell;
+  const double half_height = 0.01;
+  btRigidBody* tool = scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(radius), static_cast<btScalar>(2 * half_height)),
+                                      0.0, at(-0.055, 0.0012, 0.03 + radius + half_height), true);
+  const double top = 3 * kCell;
+  const double step = 1e-3;
+  double deepest = 0.0;
+  for (int i = 1; i <= 150; ++i) {
+    const double t = i * step;
+    // press half a cell over 50 ms, then sweep 10 cells at 1 m/s
+    const double depth = 0.5 * kCell * std::min(1.0, t / 0.05);
+    const double x = -0.055 + std::max(0.0, t - 0.05) * 1.0;
+    const double tip = top - depth;
+    tool->setWorldTransform(at(x, 0.0012, tip + radius + half_height));
+    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
+    // how far the tip is below the tissue surface right under it: the surface triangle above
+    // the tip, by a vertical ray from high above
+    const auto hit = soft->ray_test(Eigen::Vector3d(x, 0.0012, 1.0), Eigen::Vector3d(x, 0.0012, -1.0));
+    if (hit) deepest = std::max(deepest, hit->point.z() - tip);
+  }
+  return deepest;
+}
+
+TEST(BulletContacts, ThinToolSweptAcrossTheSurfaceDoesNotSlipBetweenVertices) {
+  const double with_faces = deepest_sweep_penetration(true);
+  RecordProperty("deepest_penetration_cells", std::to_string(with_faces / kCell));
+  std::printf("deepest penetration of the swept capsule: %.3f cell (vertex contacts alone: %.3f cell)\n",
+              with_faces / kCell, deepest_sweep_penetration(false) / kCell);
+  EXPECT_LT(with_faces, 0.1 * kCell);
 }
 
 }  // namespace

@@ -238,4 +238,37 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
   return std::nullopt;
 }
 
+std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, const btTransform& transform,
+                                                const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                const Eigen::Vector3d& c, double thickness) {
+  if (shape.isCompound()) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    std::optional<FacePenetration> deepest;
+    for (int child = 0; child < compound.getNumChildShapes(); ++child) {
+      const std::optional<FacePenetration> found = face_penetration(
+          *compound.getChildShape(child), transform * compound.getChildTransform(child), a, b, c, thickness);
+      if (found && (!deepest || found->depth > deepest->depth)) deepest = found;
+    }
+    return deepest;
+  }
+  if (!shape.isConvex()) return std::nullopt;
+  const Eigen::Vector3d cross = (b - a).cross(c - a);
+  const double twice_area = cross.norm();
+  if (twice_area == 0.0) return std::nullopt;
+  const Eigen::Vector3d normal = cross / twice_area;
+  // the shape's support point against the outward normal: its deepest point behind the plane
+  const btVector3 local_direction = transform.getBasis().transpose() * to_bt(-normal);
+  const Eigen::Vector3d deepest =
+      to_eigen(transform * static_cast<const btConvexShape&>(shape).localGetSupportingVertex(local_direction));
+  const double depth = (a - deepest).dot(normal);
+  if (depth <= 0.0 || depth > thickness) return std::nullopt;
+  // its foot on the plane must lie inside the triangle
+  const Eigen::Vector3d foot = deepest + depth * normal;
+  const double u = (c - b).cross(foot - b).dot(normal) / twice_area;
+  const double v = (a - c).cross(foot - c).dot(normal) / twice_area;
+  const double w = 1.0 - u - v;
+  if (u < 0.0 || v < 0.0 || w < 0.0) return std::nullopt;
+  return FacePenetration{Eigen::Vector3d(u, v, w), depth};
+}
+
 }  // namespace cubespring::bullet

@@ -21,4 +21,18 @@ namespace cubespring::bullet {
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& point, double tolerance, double thickness);
 
+/// A convex part of a rigid shape reaching through a surface triangle from outside: the point of
+/// the shape deepest behind the triangle's plane lies over the triangle. Vertex tests alone would
+/// let a tool tip thinner than a triangle pass between its corners.
+struct FacePenetration {
+  Eigen::Vector3d barycentric;  ///< of the deepest point's foot on the triangle
+  double depth = 0.0;           ///< behind the plane [m], > 0
+};
+
+/// The deepest convex child of a shape through triangle (a, b, c) (counter-clockwise from outside),
+/// when less than `thickness` deep; nothing for planes and concave meshes, which vertex tests cover.
+std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, const btTransform& transform,
+                                                const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                                const Eigen::Vector3d& c, double thickness);
+
 }  // namespace cubespring::bullet

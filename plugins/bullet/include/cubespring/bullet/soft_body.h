@@ -31,6 +31,11 @@ namespace cubespring::bullet {
 struct ContactSettings {
   double friction = 0.5;  ///< Coulomb coefficient mu [-], >= 0: the tangential impulse is at most mu
                           ///< times the normal one
+  /// Also test convex tools against the inside of surface triangles whose corners they miss, so
+  /// that a tip thinner than a cell cannot pass between vertices. Off by default: on an
+  /// asymmetric triangulation it pushes round bodies resting in a dimple sideways, and they roll
+  /// (docs/bullet-plugin.md section 5).
+  bool face_contacts = false;
 };
 
 /// What to build a soft body from.
