@@ -15,5 +15,7 @@ Command add_measure_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_voxelize_command(CLI::App& app);
 Command add_bench_voxelize_command(CLI::App& app);
+/// Only with Bullet (CUBESPRING_HAS_BULLET).
+Command add_bench_bullet_command(CLI::App& app);
 
 }  // namespace cubespring::app

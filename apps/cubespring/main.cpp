@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   commands["bench"] = cubespring::app::add_bench_command(app);
   commands["voxelize"] = cubespring::app::add_voxelize_command(app);
   commands["bench-voxelize"] = cubespring::app::add_bench_voxelize_command(app);
+#ifdef CUBESPRING_HAS_BULLET
+  commands["bench-bullet"] = cubespring::app::add_bench_bullet_command(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {

@@ -16,7 +16,7 @@ struct SurfaceProblems {
   int flipped_triangles = 0;     ///< triangles turned to agree with their neighbours (inconsistent
                                  ///< orientation), or whole parts turned inside-out
   int degenerate_triangles = 0;  ///< zero area, or two corners on one vertex: dropped
-  int duplicate_triangles = 0;   ///< same three vertices as an earlier triangle of the part: dropped
+  int duplicate_triangles = 0;   ///< same three vertices as an earlier triangle of the solid: dropped
   int components = 0;            ///< edge-connected pieces of surface, over all parts
 
   bool clean() const {

@@ -73,8 +73,9 @@ struct Voxelization {
   double voxel_volume = 0.0;  ///< number of cells times the cell volume [m^3]
   int nodes = 0;              ///< nodes of the lattice these cells make
   int springs = 0;            ///< springs of that lattice (edges shared by cells count once)
-  int undecided_cells = 0;    ///< cells the axis rays could not settle, settled by the winding number
-  std::uint64_t memory_estimate_bytes = 0;  ///< voxelizing plus the simulated body [bytes]
+  int undecided_cells = 0;    ///< samples (cells, under the centre rule) the axis rays could not
+                              ///< settle, settled by the winding number
+  std::uint64_t memory_estimate_bytes = 0;  ///< the simulated body these cells make (Model, State) [bytes]
   std::vector<std::string> warnings;        ///< problems that did not stop voxelizing
 
   double relative_volume_difference() const {

@@ -201,7 +201,9 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   if (input.num_triangles() == 0) return Status::error("the mesh has no triangles");
 
   Voxelization result;
-  const RepairedSurface repaired = repair_surface(input);
+  // a mesh that repeats its vertices per triangle (STL, or a simulator's own arrays) would have
+  // no shared edges to orient by
+  const RepairedSurface repaired = repair_surface(join_identical_vertices(input));
   const TriangleMesh& mesh = repaired.mesh;
   result.surface = repaired.problems;
   if (mesh.num_triangles() == 0) {
@@ -266,7 +268,7 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   CellGrid grid;
   grid.size = result.grid_size;
   grid.label.assign(static_cast<std::size_t>(grid.size.prod()), -1);
-  std::vector<std::vector<std::uint8_t>> solid_cells(solid_count);
+  std::vector<std::vector<std::int64_t>> solid_cells(solid_count);  // grid indices, ascending
   result.parts.resize(parts.size());
   int ambiguous = 0;
   for (const int solid : order) {
@@ -284,15 +286,15 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
     if (!solid_samples) return solid_samples.status();
     result.undecided_cells += solid_samples->undecided;
     ambiguous += solid_samples->ambiguous;
-    solid_cells[static_cast<std::size_t>(solid)] =
+    const std::vector<std::uint8_t> inside =
         cells_from_samples(solid_samples->inside, samples, grid.size, per_axis, options.min_covered_fraction);
-    const std::vector<std::uint8_t>& inside = solid_cells[static_cast<std::size_t>(solid)];
-    int count = 0;
+    std::vector<std::int64_t>& cells_of_solid = solid_cells[static_cast<std::size_t>(solid)];
     for (std::size_t c = 0; c < inside.size(); ++c) {
       if (!inside[c]) continue;
       grid.label[c] = static_cast<std::int16_t>(owner);
-      ++count;
+      cells_of_solid.push_back(static_cast<std::int64_t>(c));
     }
+    const auto count = static_cast<int>(cells_of_solid.size());
     for (const int p : members) {
       VoxelPart& report = result.parts[static_cast<std::size_t>(p)];
       report.name = parts[static_cast<std::size_t>(p)].name;
@@ -306,7 +308,9 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   }
 
   const int surface_cells = surface_cell_count(grid);
-  if (ambiguous > kMaxAmbiguousFraction * (surface_cells + ambiguous)) {
+  // ambiguous samples counted as cells' worth (a cell holds per_axis^3 samples)
+  const double ambiguous_cells = ambiguous / samples_per_cell;
+  if (ambiguous_cells > kMaxAmbiguousFraction * (surface_cells + ambiguous_cells)) {
     std::ostringstream out;
     out << "the inside test cannot decide: " << ambiguous << " samples have a winding number between "
         << kAmbiguousBand << " and " << 1.0 - kAmbiguousBand << " (against " << surface_cells
@@ -325,11 +329,9 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
     bool nested = false;
     for (std::size_t b = 0; b < solid_count && !nested; ++b) {
       if (b == a || repaired.solid_volume[b] <= repaired.solid_volume[a]) continue;
-      bool all_in = std::find(solid_cells[a].begin(), solid_cells[a].end(), 1) != solid_cells[a].end();
-      for (std::size_t c = 0; c < grid.label.size() && all_in; ++c) {
-        if (solid_cells[a][c] && !solid_cells[b][c]) all_in = false;
-      }
-      nested = all_in;
+      // both lists ascend: a's cells all in b's
+      nested = !solid_cells[a].empty() && std::includes(solid_cells[b].begin(), solid_cells[b].end(),
+                                                        solid_cells[a].begin(), solid_cells[a].end());
     }
     if (!nested) result.mesh_volume += repaired.solid_volume[a];
   }

@@ -156,6 +156,23 @@ TEST(Voxelize, OnePercentOfTrianglesMissingChangesAtMostHalfAPercentOfCells) {
   }
 }
 
+TEST(Voxelize, VerticesRepeatedPerTriangleAreJoinedFirst) {
+  // a triangle soup as STL files and simulators' own arrays give it
+  const TriangleMesh sphere = sphere_mesh(1.0, 3);
+  TriangleMesh soup;
+  soup.vertices.resize(3, 3 * sphere.num_triangles());
+  soup.triangles.resize(3, sphere.num_triangles());
+  for (int t = 0; t < sphere.num_triangles(); ++t) {
+    for (int c = 0; c < 3; ++c) {
+      soup.vertices.col(3 * t + c) = sphere.vertices.col(sphere.triangles(c, t));
+      soup.triangles(c, t) = 3 * t + c;
+    }
+  }
+  const Voxelization v = voxelize_ok(test::flip_triangles(soup, 0.1), across(20));
+  EXPECT_EQ(v.surface.open_edges, 0);
+  EXPECT_EQ(world_cells(v), world_cells(voxelize_ok(sphere, across(20))));
+}
+
 TEST(Voxelize, CountsMatchTheBuiltModel) {
   // a 3 x 4 x 5 block of 0.1 m cells, faces between cell centres
   const Voxelization v = voxelize_ok(box_mesh(Eigen::Vector3d(0.02, 0.03, 0.01), Eigen::Vector3d(0.29, 0.38, 0.48)),
