@@ -83,4 +83,21 @@ void finish_substep(RigidTrack& track) {
   track.angular_impulse += track.substep_angular_impulse;
 }
 
+void hand_over(RigidTrack& track, double step_length) {
+  if (!track.dynamic || (track.impulse.isZero() && track.angular_impulse.isZero())) return;
+  track.body->activate(true);
+  if (!track.free_flight) {
+    track.body->applyCentralImpulse(to_bt(track.impulse));
+    track.body->applyTorqueImpulse(to_bt(track.angular_impulse));
+    return;
+  }
+  const btVector3 linear = to_bt(track.linear_velocity);
+  const btVector3 angular = to_bt(track.angular_velocity);
+  btTransform start;
+  btTransformUtil::integrateTransform(track.transform, -linear, -angular, static_cast<btScalar>(step_length), start);
+  track.body->setCenterOfMassTransform(start);
+  track.body->setLinearVelocity(linear - track.body->getGravity() * static_cast<btScalar>(step_length));
+  track.body->setAngularVelocity(angular);
+}
+
 }  // namespace cubespring::bullet

@@ -52,4 +52,10 @@ void advance_track(RigidTrack& track, double t, double dt, double step_length);
 /// Adds the sub-step's impulses to the step's.
 void finish_substep(RigidTrack& track);
 
+/// At the end of the soft sub-steps, gives a dynamic body the tissue's impulses over the step: a
+/// free body also takes the motion it had in the sub-steps, so that Bullet's own step (v += g T,
+/// then x += v T) ends where they did (the impulse alone misses by a little each step and makes a
+/// resting body rock); a jointed one only the impulses, its joints being Bullet's to solve.
+void hand_over(RigidTrack& track, double step_length);
+
 }  // namespace cubespring::bullet

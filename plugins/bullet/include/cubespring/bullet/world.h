@@ -54,6 +54,8 @@ class World : public btDiscreteDynamicsWorld {
 
  private:
   void advance_soft_body(SoftBody& body, double time_step);
+  static void drive_anchors(SoftBody& body, std::vector<struct RigidTrack>& tracks,
+                            const std::vector<int>& anchor_track, double dt);
 
   std::vector<SoftBody*> soft_bodies_;
   mutable std::mutex wrench_mutex_;
