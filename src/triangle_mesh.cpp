@@ -4,8 +4,10 @@
 
 #include <array>
 #include <cmath>
-#include <map>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
+#include <vector>
 
 namespace cubespring {
 
@@ -14,6 +16,73 @@ namespace {
 std::string prefixed(const std::string& source, const std::string& message) {
   return source.empty() ? message : source + ": " + message;
 }
+
+// The bits of a coordinate as join_identical_vertices compares them: -0.0 is the same point as
+// 0.0 (== says so, and so did the ordered map this replaced), any other value is its exact bit
+// pattern (a NaN, which validate() rejects, then equals only the same NaN).
+std::uint64_t coordinate_bits(double x) {
+  if (x == 0.0) x = 0.0;
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &x, sizeof bits);
+  return bits;
+}
+
+// The first vertex with each vertex's coordinates: a hash table on their bits, with open
+// addressing (one flat array, probed linearly). An ordered map on the coordinates cost a few
+// pointer hops per vertex, most of what loading a mesh spent beyond assimp.
+class FirstWithCoordinates {
+ public:
+  explicit FirstWithCoordinates(const Eigen::Matrix3Xd& vertices) : vertices_(vertices) {
+    // at most half full, so that probe runs stay short
+    std::size_t capacity = 16;
+    while (capacity < 2 * static_cast<std::size_t>(vertices.cols())) capacity *= 2;
+    slots_.assign(capacity, Slot{});
+    mask_ = capacity - 1;
+  }
+
+  // The first vertex seen with v's coordinates, or v itself (then remembered) when there is none.
+  int find_or_add(int v) {
+    const Key key = key_of(v);
+    const std::uint64_t h = hash(key);
+    const auto tag = static_cast<std::uint32_t>(h >> 32);
+    for (std::size_t i = static_cast<std::size_t>(h) & mask_;; i = (i + 1) & mask_) {
+      Slot& slot = slots_[i];
+      if (slot.vertex == kEmpty) {
+        slot = {v, tag};
+        return v;
+      }
+      if (slot.tag == tag && key_of(slot.vertex) == key) return slot.vertex;
+    }
+  }
+
+ private:
+  using Key = std::array<std::uint64_t, 3>;
+  static constexpr int kEmpty = -1;
+  // A vertex and bits of its hash: most probes that meet another vertex are told apart by the
+  // tag, without reading that vertex's coordinates from far away in memory.
+  struct Slot {
+    int vertex = kEmpty;
+    std::uint32_t tag = 0;
+  };
+
+  Key key_of(int v) const {
+    return {coordinate_bits(vertices_(0, v)), coordinate_bits(vertices_(1, v)), coordinate_bits(vertices_(2, v))};
+  }
+  // Mixes every bit into all others: coordinates of nearby vertices differ mostly in their low
+  // mantissa bits, and the table index takes the hash's low bits, the tag its high ones.
+  static std::uint64_t hash(const Key& key) {
+    std::uint64_t h = 0;
+    for (const std::uint64_t word : key) {
+      h = (h ^ word) * 0x9e3779b97f4a7c15ULL;
+      h ^= h >> 32;
+    }
+    return h;
+  }
+
+  const Eigen::Matrix3Xd& vertices_;
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0;
+};
 
 }  // namespace
 
@@ -62,27 +131,32 @@ std::vector<MeshPart> parts_of(const TriangleMesh& mesh) {
 }
 
 TriangleMesh join_identical_vertices(const TriangleMesh& mesh) {
-  // a map on exact coordinates: joining nearly equal vertices would be a tolerance choice,
-  // and the voxelizer does not need it (its inside test is exact on shared edges).
-  std::map<std::array<double, 3>, int> index_of;
-  std::vector<int> new_index(static_cast<std::size_t>(mesh.num_vertices()));
+  // exact coordinates only: joining nearly equal vertices would be a tolerance choice, and the
+  // voxelizer does not need it (its inside test is exact on shared edges)
+  const int count = mesh.num_vertices();
+  FirstWithCoordinates first_with(mesh.vertices);
+  std::vector<int> new_index(static_cast<std::size_t>(count));
+  std::vector<int> kept;  // the original index of each joined vertex, in order of first appearance
+  for (int v = 0; v < count; ++v) {
+    const int first = first_with.find_or_add(v);
+    if (first == v) {
+      new_index[static_cast<std::size_t>(v)] = static_cast<int>(kept.size());
+      kept.push_back(v);
+    } else {
+      new_index[static_cast<std::size_t>(v)] = new_index[static_cast<std::size_t>(first)];
+    }
+  }
   TriangleMesh joined;
   joined.parts = mesh.parts;
-  std::vector<Eigen::Vector3d> kept;
-  for (int v = 0; v < mesh.num_vertices(); ++v) {
-    const std::array<double, 3> key{mesh.vertices(0, v), mesh.vertices(1, v), mesh.vertices(2, v)};
-    const auto [it, inserted] = index_of.emplace(key, static_cast<int>(kept.size()));
-    if (inserted) kept.push_back(mesh.vertices.col(v));
-    new_index[static_cast<std::size_t>(v)] = it->second;
-  }
   joined.vertices.resize(3, static_cast<Eigen::Index>(kept.size()));
-  for (std::size_t v = 0; v < kept.size(); ++v) joined.vertices.col(static_cast<Eigen::Index>(v)) = kept[v];
+  for (std::size_t v = 0; v < kept.size(); ++v) {
+    joined.vertices.col(static_cast<Eigen::Index>(v)) = mesh.vertices.col(kept[v]);
+  }
   joined.triangles.resize(3, mesh.num_triangles());
   for (int t = 0; t < mesh.num_triangles(); ++t) {
     for (int corner = 0; corner < 3; ++corner) {
       const int v = mesh.triangles(corner, t);
-      joined.triangles(corner, t) =
-          (v >= 0 && v < mesh.num_vertices()) ? new_index[static_cast<std::size_t>(v)] : v;
+      joined.triangles(corner, t) = (v >= 0 && v < count) ? new_index[static_cast<std::size_t>(v)] : v;
     }
   }
   return joined;

@@ -132,7 +132,8 @@ Status append_part(const aiScene& scene, const aiNode& node, const aiMesh& mesh,
     const aiVector3D& p = mesh.mVertices[v];
     const Eigen::Vector3d file_point(p.x, p.y, p.z);
     const Eigen::Vector3d point = scale * (linear * file_point + translation);
-    // checked here, before join_identical_vertices: its exact-coordinate map cannot order NaN
+    // checked here, where the part and vertex are known: join_identical_vertices would only keep
+    // a NaN apart from every other vertex
     if (!point.allFinite()) {
       std::ostringstream message;
       message << "part '" << name << "': vertex " << v << " is (" << p.x << ", " << p.y << ", "

@@ -3,7 +3,10 @@
 #include "axis_rays.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace cubespring::voxelize_detail {
 
@@ -41,9 +44,71 @@ struct Crossing {
   int sign;         // +1 entering (normal against the ray), -1 leaving
 };
 
-std::int64_t snap(double coordinate, double spacing, std::int64_t origin_index) {
-  return std::llround(coordinate / spacing * static_cast<double>(kUnits)) - origin_index * kUnits;
+// std::llround's rounding, halves away from zero, without its library call (half of the ray
+// casting's time went there). Unlike floor(x + 0.5) it is odd, round(-x) == -round(x), which a
+// mesh symmetric about a grid node needs to give symmetric samples. Truncate, then step away
+// from zero when the dropped fraction is a half or more: x - trunc(x) is exact below 2^52, and
+// from there on x is a whole number. Beyond the int64 range (no grid gets there) llround
+// answers, as before.
+std::int64_t round_half_away_from_zero(double x) {
+  if (!(std::abs(x) < 0x1p62)) return std::llround(x);
+  const auto whole = static_cast<std::int64_t>(x);
+  const double fraction = x - static_cast<double>(whole);
+  // added as 0 or 1 rather than branched on: fractions are random, branches would mispredict
+  return whole + static_cast<std::int64_t>(fraction >= 0.5) - static_cast<std::int64_t>(fraction <= -0.5);
 }
+
+std::int64_t snap(double coordinate, double spacing, std::int64_t origin_index) {
+  return round_half_away_from_zero(coordinate / spacing * static_cast<double>(kUnits)) - origin_index * kUnits;
+}
+
+// A vertex snapped on all three axes.
+using SnappedVertex = std::array<std::int64_t, 3>;
+
+SnappedVertex snap_vertex(const Eigen::Matrix3Xd& vertices, Eigen::Index v, const SampleGrid& grid) {
+  SnappedVertex snapped;
+  for (int d = 0; d < 3; ++d) {
+    snapped[static_cast<std::size_t>(d)] = snap(vertices(d, v), grid.spacing[d], grid.origin_index[d]);
+  }
+  return snapped;
+}
+
+// The snapped corners of the triangles. Each vertex is snapped once rather than once per corner
+// (a vertex has about six triangles), into a table over the range of vertex indices the
+// triangles use; when that range is wider than their corners (a solid using few of a mesh's
+// many vertices) such a table would cost more than it saves, and each corner is snapped on its
+// own as before. Either way a vertex gets the same value (one function of its coordinates).
+class SnappedCorners {
+ public:
+  SnappedCorners(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const SampleGrid& grid)
+      : triangles_(triangles) {
+    if (triangles.size() == 0) return;
+    const int first = triangles.minCoeff();
+    const int last = triangles.maxCoeff();
+    by_vertex_ = static_cast<std::int64_t>(last) - first < static_cast<std::int64_t>(triangles.size());
+    if (by_vertex_) {
+      first_ = first;
+      table_.resize(static_cast<std::size_t>(last - first + 1));
+      for (int v = first; v <= last; ++v) table_[static_cast<std::size_t>(v - first)] = snap_vertex(vertices, v, grid);
+    } else {
+      table_.resize(static_cast<std::size_t>(triangles.size()));
+      for (Eigen::Index i = 0; i < triangles.size(); ++i) {
+        table_[static_cast<std::size_t>(i)] = snap_vertex(vertices, triangles.data()[i], grid);
+      }
+    }
+  }
+
+  const SnappedVertex& operator()(Eigen::Index t, int corner) const {
+    return by_vertex_ ? table_[static_cast<std::size_t>(triangles_(corner, t) - first_)]
+                      : table_[static_cast<std::size_t>(3 * t + corner)];
+  }
+
+ private:
+  const Eigen::Matrix3Xi& triangles_;
+  bool by_vertex_ = false;
+  int first_ = 0;
+  std::vector<SnappedVertex> table_;  // by vertex - first_, or by corner (3 * t + corner)
+};
 
 // First and last row centre index (centre = index * kUnits + kHalfUnit) within [low, high].
 std::int64_t first_row(std::int64_t low) {
@@ -55,8 +120,23 @@ std::int64_t last_row(std::int64_t high) {
   return shifted >= 0 ? shifted / kUnits : -((-shifted + kUnits - 1) / kUnits);
 }
 
+// The rows whose centres lie in a triangle's bounding box, clipped to the grid.
+struct RowBox {
+  std::int64_t begin_b, end_b, begin_c, end_c;  // inclusive
+  bool empty() const { return begin_b > end_b || begin_c > end_c; }
+};
+
+RowBox rows_under(const std::array<Point2, 3>& p, std::int64_t rows_b, std::int64_t rows_c) {
+  const std::int64_t low_b = std::min({p[0].b, p[1].b, p[2].b});
+  const std::int64_t high_b = std::max({p[0].b, p[1].b, p[2].b});
+  const std::int64_t low_c = std::min({p[0].c, p[1].c, p[2].c});
+  const std::int64_t high_c = std::max({p[0].c, p[1].c, p[2].c});
+  return {std::max<std::int64_t>(first_row(low_b), 0), std::min<std::int64_t>(last_row(high_b), rows_b - 1),
+          std::max<std::int64_t>(first_row(low_c), 0), std::min<std::int64_t>(last_row(high_c), rows_c - 1)};
+}
+
 void add_triangle_crossings(const std::array<Point2, 3>& projected, const std::array<std::int64_t, 3>& along,
-                            std::int64_t rows_b, std::int64_t rows_c, std::vector<Crossing>& crossings) {
+                            const RowBox& rows, std::int64_t rows_b, std::vector<Crossing>& crossings) {
   const std::int64_t area = edge_function(projected[0], projected[1], projected[2]);
   if (area == 0) return;  // seen edge-on: its neighbours' crossings cover the ray
   // a counter-clockwise projection has its outward normal along +axis: the ray leaves there
@@ -67,16 +147,8 @@ void add_triangle_crossings(const std::array<Point2, 3>& projected, const std::a
     std::swap(p[1], p[2]);
     std::swap(a[1], a[2]);
   }
-  const std::int64_t low_b = std::min({p[0].b, p[1].b, p[2].b});
-  const std::int64_t high_b = std::max({p[0].b, p[1].b, p[2].b});
-  const std::int64_t low_c = std::min({p[0].c, p[1].c, p[2].c});
-  const std::int64_t high_c = std::max({p[0].c, p[1].c, p[2].c});
-  const std::int64_t begin_b = std::max<std::int64_t>(first_row(low_b), 0);
-  const std::int64_t end_b = std::min<std::int64_t>(last_row(high_b), rows_b - 1);
-  const std::int64_t begin_c = std::max<std::int64_t>(first_row(low_c), 0);
-  const std::int64_t end_c = std::min<std::int64_t>(last_row(high_c), rows_c - 1);
-  for (std::int64_t jc = begin_c; jc <= end_c; ++jc) {
-    for (std::int64_t jb = begin_b; jb <= end_b; ++jb) {
+  for (std::int64_t jc = rows.begin_c; jc <= rows.end_c; ++jc) {
+    for (std::int64_t jb = rows.begin_b; jb <= rows.end_b; ++jb) {
       const Point2 q{jb * kUnits + kHalfUnit, jc * kUnits + kHalfUnit};
       const std::int64_t w0 = edge_function(p[1], p[2], q);
       const std::int64_t w1 = edge_function(p[2], p[0], q);
@@ -103,17 +175,21 @@ void cast_axis_rays(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& tr
   const std::int64_t rows_c = grid.size[axis_c];
   const std::int64_t samples_along = grid.size[axis];
 
+  const SnappedCorners snapped(vertices, triangles, grid);
   std::vector<Crossing> crossings;
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
     std::array<Point2, 3> projected;
     std::array<std::int64_t, 3> along;
-    for (std::size_t corner = 0; corner < 3; ++corner) {
-      const auto vertex = vertices.col(triangles(static_cast<Eigen::Index>(corner), t));
-      projected[corner] = {snap(vertex[axis_b], grid.spacing[axis_b], grid.origin_index[axis_b]),
-                           snap(vertex[axis_c], grid.spacing[axis_c], grid.origin_index[axis_c])};
-      along[corner] = snap(vertex[axis], grid.spacing[axis], grid.origin_index[axis]);
+    for (int corner = 0; corner < 3; ++corner) {
+      const SnappedVertex& vertex = snapped(t, corner);
+      projected[static_cast<std::size_t>(corner)] = {vertex[static_cast<std::size_t>(axis_b)],
+                                                     vertex[static_cast<std::size_t>(axis_c)]};
+      along[static_cast<std::size_t>(corner)] = vertex[static_cast<std::size_t>(axis)];
     }
-    add_triangle_crossings(projected, along, rows_b, rows_c, crossings);
+    // most triangles of a fine mesh lie between row centres: no crossing to look for
+    const RowBox rows = rows_under(projected, rows_b, rows_c);
+    if (rows.empty()) continue;
+    add_triangle_crossings(projected, along, rows, rows_b, crossings);
   }
   std::sort(crossings.begin(), crossings.end(), [](const Crossing& x, const Crossing& y) {
     return x.row != y.row ? x.row < y.row : x.position < y.position;
