@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # SPDX-FileCopyrightText: 2026 cubespring authors
 # SPDX-License-Identifier: MIT
-# Set-up, then the main job. Until the surgical demo lands, the main job is the paper's cantilever:
-# a 16x4x4 beam of 1 cm cells, E = 1 MPa, nu = 0.3, sagging under gravity.
+# Set-up, then the main job: the headless surgical demo. With no argument, cubespring plays the
+# default scene (data/scenes/liver_probe.json: a probe presses into a liver with a tumour, drags
+# across it and lets go) and writes PNG frames, tool_forces.csv and tool_force.png to
+# ./cubespring-demo-output; arguments go to cubespring (e.g. `run SCENE.json --frames 12`).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh release
-./build/release/apps/cubespring/cubespring measure cantilever "$@"
+./build/release/apps/cubespring/cubespring "$@"

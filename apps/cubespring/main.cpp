@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
 #ifdef CUBESPRING_HAS_BULLET
   commands["bench-bullet"] = cubespring::app::add_bench_bullet_command(app);
 #endif
+#ifdef CUBESPRING_HAS_DEMO
+  commands["run"] = cubespring::app::add_run_command(app);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -33,6 +36,10 @@ int main(int argc, char** argv) {
   for (auto& [name, run] : commands) {
     if (app.got_subcommand(name)) return run();
   }
+#ifdef CUBESPRING_HAS_DEMO
+  return commands["run"]();  // no subcommand: the default scene (the surgical demo)
+#else
   std::cout << app.help();
   return 0;
+#endif
 }

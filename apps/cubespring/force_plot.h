@@ -1,0 +1,23 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// A line plot of each tool's contact force magnitude over time, drawn straight into an Image.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cubespring/render/image.h"
+
+namespace cubespring::app {
+
+struct ForceSeries {
+  std::string name;                ///< the tool's name, shown in the key
+  std::vector<double> time;        ///< [s]
+  std::vector<double> magnitude;   ///< |force| at each time [N]
+};
+
+/// Axes with numbered ticks (time in seconds across, force in newtons up), one coloured line per
+/// series and a key with their names; width x height pixels.
+Image plot_forces(const std::vector<ForceSeries>& series, int width = 1000, int height = 500);
+
+}  // namespace cubespring::app

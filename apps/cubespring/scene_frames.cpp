@@ -1,0 +1,80 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "scene_frames.h"
+
+#include <utility>
+
+#include "cubespring/embedding.h"
+#include "cubespring/render/colour_map.h"
+#include "cubespring/render/wireframe.h"
+#include "tool_motion.h"
+
+namespace cubespring::app {
+namespace {
+
+const Eigen::Vector3f kTissue(0.55f, 0.16f, 0.13f);   // liver red, for colour_map "none"
+const Eigen::Vector3f kSteel(0.62f, 0.64f, 0.67f);    // data/probe.mtl's grey
+const Eigen::Vector3f kLattice(0.08f, 0.08f, 0.08f);
+
+}  // namespace
+
+SceneFrames::SceneFrames(Renderer renderer, const Scene& scene) : renderer_(std::move(renderer)), spec_(scene.render) {}
+
+Result<SceneFrames> SceneFrames::create(const Scene& scene) {
+  RenderSettings settings;
+  settings.width = scene.render.width;
+  settings.height = scene.render.height;
+  settings.supersampling = scene.render.supersampling;
+  settings.floor = scene.table.enabled;
+  settings.floor_height = scene.table.height;
+  settings.floor_half_size = scene.table.half_size;
+  Result<Renderer> renderer = Renderer::create(settings);
+  if (!renderer) return Status::error("renderer: " + renderer.message());
+  return SceneFrames(std::move(renderer).value(), scene);
+}
+
+Eigen::Matrix3Xd SceneFrames::organ_vertices(SceneWorld& world) {
+  Eigen::Matrix3Xd vertices;
+  const bullet::SoftBody& organ = world.organ();
+  embedded_positions(organ.model(), organ.embedding(), organ.state().positions, vertices);
+  return vertices;
+}
+
+Result<Image> SceneFrames::render(SceneWorld& world, double t) {
+  if (Status s = renderer_.begin_frame(spec_.camera); !s) return s;
+
+  const Eigen::Matrix3Xd vertices = organ_vertices(world);
+  const Eigen::Matrix3Xi& triangles = world.organ_mesh().triangles;
+  vertex_normals(vertices, triangles, organ_normals_scratch_);
+  if (spec_.colour_map == ColourMode::kDisplacement && rest_vertices_.cols() == vertices.cols()) {
+    const ColourMap map = ColourMap::viridis();
+    const Eigen::VectorXd moved = displacement_magnitudes(rest_vertices_, vertices);
+    if (Status s = renderer_.draw_mesh_coloured(vertices, organ_normals_scratch_, triangles,
+                                                map.colours(moved, 0.0, spec_.colour_range));
+        !s) {
+      return s;
+    }
+    // millimetres read better than metres on a 5x7 font
+    if (Status s = renderer_.draw_legend(map, 0.0, 1000.0 * spec_.colour_range, "DISPLACEMENT [MM]"); !s) return s;
+  } else if (Status s = renderer_.draw_mesh(vertices, organ_normals_scratch_, triangles, kTissue); !s) {
+    return s;
+  }
+
+  if (spec_.wireframe) {
+    Eigen::Matrix3Xd points;
+    Eigen::Matrix2Xi segments;
+    lattice_wireframe(world.organ().model(), world.organ().state().positions, points, segments);
+    if (Status s = renderer_.draw_lines(points, segments, kLattice); !s) return s;
+  }
+
+  for (const SceneTool& tool : world.tools()) {
+    const Eigen::Isometry3d pose = pose_at(tool.keyframes, t);
+    const Eigen::Matrix3Xd placed = pose * tool.mesh.vertices;
+    Eigen::Matrix3Xd normals;
+    vertex_normals(placed, tool.mesh.triangles, normals);
+    if (Status s = renderer_.draw_mesh(placed, normals, tool.mesh.triangles, kSteel); !s) return s;
+  }
+  return renderer_.end_frame();
+}
+
+}  // namespace cubespring::app

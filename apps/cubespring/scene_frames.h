@@ -1,0 +1,39 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Pictures of a running scene: the organ's visual surface (coloured by how far it moved since
+// t = 0, with a legend), the tools, the table, optionally the lattice.
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "cubespring/render/renderer.h"
+#include "cubespring/result.h"
+#include "scene.h"
+#include "scene_world.h"
+
+namespace cubespring::app {
+
+class SceneFrames {
+ public:
+  static Result<SceneFrames> create(const Scene& scene);
+
+  /// The organ surface's vertices now [m].
+  static Eigen::Matrix3Xd organ_vertices(SceneWorld& world);
+  /// Where displacement is measured from (the surface at t = 0) [m].
+  void set_rest(const Eigen::Matrix3Xd& rest_vertices) { rest_vertices_ = rest_vertices; }
+
+  /// The scene as it is, tools at time t [s].
+  Result<Image> render(SceneWorld& world, double t);
+
+ private:
+  SceneFrames(Renderer renderer, const Scene& scene);
+
+  Renderer renderer_;
+  RenderSpec spec_;
+  Eigen::Matrix3Xd rest_vertices_;
+  Eigen::Matrix3Xd organ_normals_scratch_;
+};
+
+}  // namespace cubespring::app

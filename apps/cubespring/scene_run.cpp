@@ -1,0 +1,167 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "scene_run.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <ostream>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "cubespring/render/image.h"
+#include "force_plot.h"
+#include "progress_bar.h"
+#include "scene_frames.h"
+#include "scene_world.h"
+
+namespace cubespring::app {
+
+const char* const kToolForceCsvHeader =
+    "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts";
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string frame_name(int frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.png", frame);
+  return name;
+}
+
+// Frames of an earlier, longer run would read as part of this one: remove those past the last.
+void remove_stale_frames(const fs::path& folder, int frames) {
+  static const std::regex kFrame(R"(frame_(\d{4,})\.png)");
+  std::error_code ignored;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, ignored)) {
+    std::smatch match;
+    const std::string name = entry.path().filename().string();
+    if (!std::regex_match(name, match, kFrame)) continue;
+    if (match[1].length() > 9 || std::stol(match[1].str()) >= frames) fs::remove(entry.path(), ignored);
+  }
+}
+
+void print_summary(const Scene& scene, const SceneWorld& world, int steps, int frames) {
+  const OrganSummary& s = world.summary();
+  std::fprintf(stderr, "scene %s: organ %s, %d cells of %.1f mm, %d nodes (%d fixed), sub-step %.3f ms\n",
+               scene.source.c_str(), scene.organ.mesh.c_str(), s.cells, 1000.0 * s.cell_size, s.nodes, s.fixed_nodes,
+               1000.0 * s.sub_step);
+  for (const std::string& note : s.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+  std::fprintf(stderr, "%.2f s in %d steps of %.2f ms after %.2f s of settling; %d frames of %dx%d\n", scene.duration,
+               steps, 1000.0 * scene.time_step, scene.settle_time, frames, scene.render.width, scene.render.height);
+}
+
+// The step at which each frame is taken: the one nearest its time.
+std::vector<int> frame_steps(const std::vector<double>& times, double dt) {
+  std::vector<int> steps;
+  for (const double t : times) steps.push_back(static_cast<int>(std::lround(t / dt)));
+  return steps;
+}
+
+std::string seconds(double t) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f s", t);
+  return text;
+}
+
+// The organ comes to rest on the table before the story starts, tools held at their first pose.
+Status settle(SceneWorld& world, const Scene& scene) {
+  const int steps = static_cast<int>(std::lround(scene.settle_time / scene.time_step));
+  world.place_tools(0.0);
+  for (int n = 0; n < steps; ++n) {
+    if (Status s = world.step(scene.time_step); !s) {
+      return Status::error(s.message() + " (while settling, " + seconds(scene.settle_time - n * scene.time_step) +
+                           " before t = 0)");
+    }
+  }
+  return {};
+}
+
+// One CSV row per tool for the step that ended at t, and the magnitudes for the plot.
+void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<ForceSeries>& series) {
+  const auto number = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", value);
+    return std::string(text);
+  };
+  char time[32];
+  std::snprintf(time, sizeof time, "%.6f", t);
+  for (std::size_t i = 0; i < world.tools().size(); ++i) {
+    const SceneTool& tool = world.tools()[i];
+    const bullet::ContactWrench w = world.world().getContactWrench(tool.body.get());
+    // the plugin gives the torque about the collision body's origin; the CSV's is about the tip
+    const Eigen::Isometry3d pose = world.tool_pose(tool);
+    const Eigen::Vector3d torque = w.torque + (pose * tool.shape_offset.translation() - pose.translation()).cross(w.force);
+    csv << time << ',' << tool.name << ',' << number(w.force.x()) << ',' << number(w.force.y()) << ','
+        << number(w.force.z()) << ',' << number(w.force.norm()) << ',' << number(torque.x()) << ','
+        << number(torque.y()) << ',' << number(torque.z()) << ',' << w.contacts << '\n';
+    series[i].time.push_back(t);
+    series[i].magnitude.push_back(w.force.norm());
+  }
+}
+
+}  // namespace
+
+Result<RunOutput> run_scene(const Scene& scene) {
+  Result<std::unique_ptr<SceneWorld>> built = SceneWorld::create(scene);
+  if (!built) return built.status();
+  SceneWorld& world = **built;
+  Result<SceneFrames> made = SceneFrames::create(scene);
+  if (!made) return made.status();
+  SceneFrames& frames = *made;
+
+  const double dt = scene.time_step;
+  const int steps = static_cast<int>(std::lround(scene.duration / dt));
+  const std::vector<int> frame_at = frame_steps(scene.frame_times(), dt);
+  const int frame_count = static_cast<int>(frame_at.size());
+  print_summary(scene, world, steps, frame_count);
+
+  const fs::path folder(scene.output);
+  std::error_code error;
+  fs::create_directories(folder, error);
+  if (error || !fs::is_directory(folder)) {
+    return Status::error("cannot create the output folder " + scene.output + (error ? ": " + error.message() : ""));
+  }
+  remove_stale_frames(folder, frame_count);
+  RunOutput output;
+  output.csv = (folder / "tool_forces.csv").string();
+  output.plot = (folder / "tool_force.png").string();
+  std::ofstream csv(output.csv);
+  if (!csv) return Status::error("cannot write " + output.csv);
+  csv << kToolForceCsvHeader << '\n';
+
+  if (Status s = settle(world, scene); !s) return s;
+  frames.set_rest(SceneFrames::organ_vertices(world));
+
+  std::vector<ForceSeries> series(world.tools().size());
+  for (std::size_t i = 0; i < series.size(); ++i) series[i].name = world.tools()[i].name;
+  ProgressBar progress(frame_count, scene.duration);
+  int next_frame = 0;
+  for (int n = 0; n <= steps; ++n) {
+    const double t = n * dt;
+    if (n > 0) {
+      world.place_tools(t);  // where the step ends: Bullet derives the tools' velocities from it
+      if (Status s = world.step(dt); !s) return Status::error(s.message() + " (at t = " + seconds(t) + ")");
+      record_forces(world, t, csv, series);
+    }
+    while (next_frame < frame_count && frame_at[static_cast<std::size_t>(next_frame)] <= n) {
+      Result<Image> image = frames.render(world, t);
+      if (!image) return Status::error("frame " + std::to_string(next_frame) + ": " + image.message());
+      if (Status s = write_png(*image, (folder / frame_name(next_frame)).string()); !s) return s;
+      ++next_frame;
+    }
+    progress.update(next_frame, t);
+  }
+  progress.finish(next_frame, steps * dt);
+  csv.close();
+  if (!csv) return Status::error("cannot write " + output.csv);
+  if (Status s = write_png(plot_forces(series), output.plot); !s) return s;
+  output.frames = next_frame;
+  return output;
+}
+
+}  // namespace cubespring::app

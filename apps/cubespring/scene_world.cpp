@@ -1,0 +1,209 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "scene_world.h"
+
+#include <map>
+#include <sstream>
+
+#include "cubespring/mesh/load_mesh.h"
+#include "cubespring/voxelize.h"
+#include "tool_motion.h"
+#include "tool_shapes.h"
+
+namespace cubespring::app {
+namespace {
+
+btVector3 to_bt(const Eigen::Vector3d& v) {
+  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
+}
+
+btTransform to_bt(const Eigen::Isometry3d& pose) {
+  const Eigen::Quaterniond q(pose.linear());
+  return btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()), static_cast<btScalar>(q.z()),
+                                  static_cast<btScalar>(q.w())),
+                     to_bt(Eigen::Vector3d(pose.translation())));
+}
+
+Eigen::Isometry3d to_eigen(const btTransform& transform) {
+  const btQuaternion q = transform.getRotation();
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
+  const btVector3& origin = transform.getOrigin();
+  pose.translation() = Eigen::Vector3d(origin.x(), origin.y(), origin.z());
+  return pose;
+}
+
+std::string where(const Scene& scene, int line) {
+  return line > 0 ? scene.source + ":" + std::to_string(line) + ": " : std::string();
+}
+
+// One material per voxelized part, matched by the part's material name, else by its name.
+Result<std::vector<Material>> part_materials(const Scene& scene, const Voxelization& voxels, OrganSummary& summary) {
+  std::vector<Material> materials;
+  std::map<std::string, bool> used;
+  for (const VoxelPart& part : voxels.parts) {
+    auto found = scene.organ.materials.find(part.material_name);
+    if (part.material_name.empty() || found == scene.organ.materials.end()) found = scene.organ.materials.find(part.name);
+    if (found == scene.organ.materials.end()) {
+      materials.push_back(default_tissue());
+      summary.notes.push_back("part \"" + part.name + "\" (material \"" + part.material_name +
+                              "\") has no entry in organ.materials: it takes the default tissue");
+    } else {
+      materials.push_back(found->second);
+      used[found->first] = true;
+    }
+  }
+  for (const auto& [name, material] : scene.organ.materials) {
+    if (used.count(name) != 0) continue;
+    std::string parts;
+    for (const VoxelPart& part : voxels.parts) {
+      parts += (parts.empty() ? "" : ", ") + part.name + " (material " + part.material_name + ")";
+    }
+    const auto line = scene.organ.material_lines.find(name);
+    return Status::error(where(scene, line == scene.organ.material_lines.end() ? 0 : line->second) + "\"" + name +
+                         "\" in \"organ.materials\" matches no part of " + scene.organ.mesh + " (its parts: " + parts + ")");
+  }
+  return materials;
+}
+
+}  // namespace
+
+SceneWorld::SceneWorld() = default;
+
+SceneWorld::~SceneWorld() {
+  if (!world_) return;
+  for (SceneTool& tool : tools_) world_->removeRigidBody(tool.body.get());
+  if (table_) world_->removeRigidBody(table_.get());
+  if (organ_) world_->removeSoftBody(organ_.get());
+}
+
+Result<std::unique_ptr<SceneWorld>> SceneWorld::create(const Scene& scene) {
+  std::unique_ptr<SceneWorld> built(new SceneWorld());
+  built->configuration_ = std::make_unique<btDefaultCollisionConfiguration>();
+  built->dispatcher_ = std::make_unique<btCollisionDispatcher>(built->configuration_.get());
+  built->broadphase_ = std::make_unique<btDbvtBroadphase>();
+  built->solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
+  built->world_ = std::make_unique<bullet::World>(built->dispatcher_.get(), built->broadphase_.get(), built->solver_.get(),
+                                                  built->configuration_.get());
+  built->world_->setGravity(to_bt(scene.gravity));
+  if (Status s = built->build_organ(scene); !s) return s;
+  if (Status s = built->build_table(scene); !s) return s;
+  if (Status s = built->build_tools(scene); !s) return s;
+  return built;
+}
+
+Status SceneWorld::build_organ(const Scene& scene) {
+  const OrganSpec& spec = scene.organ;
+  LoadOptions load;
+  load.scale = spec.scale;
+  Result<TriangleMesh> mesh = load_mesh(spec.mesh, load);
+  if (!mesh) return Status::error("organ mesh: " + mesh.message());
+  organ_mesh_ = std::move(mesh).value();
+
+  VoxelizeOptions options;
+  if (spec.cells_across > 0) {
+    options.cells_across = spec.cells_across;
+  } else {
+    options.cell_size = Eigen::Vector3d::Constant(spec.cell_size);
+  }
+  Result<Voxelization> voxels = voxelize(organ_mesh_, options);
+  if (!voxels) return Status::error("voxelizing the organ " + spec.mesh + ": " + voxels.message());
+  Result<std::vector<Material>> materials = part_materials(scene, *voxels, summary_);
+  if (!materials) return materials.status();
+
+  bullet::SoftBodySettings settings;
+  settings.lattice = lattice_from_voxels(*voxels, *materials, spec.model);
+  settings.visual_mesh = organ_mesh_;
+  settings.integrator = scene.integrator;
+  settings.contact.friction = spec.friction;
+  settings.contact.face_contacts = spec.face_contacts;
+  Result<std::unique_ptr<bullet::SoftBody>> body = bullet::SoftBody::create(settings);
+  if (!body) return Status::error("organ: " + body.message());
+  organ_ = std::move(body).value();
+
+  for (std::size_t i = 0; i < spec.fixed_regions.size(); ++i) {
+    const Box& box = spec.fixed_regions[i];
+    if (Status s = organ_->constraints().fix_box(organ_->model(), box.lower, box.upper); !s) {
+      std::ostringstream message;
+      message << where(scene, box.line) << "organ.fixed_regions[" << i << "] from (" << box.lower.transpose() << ") to ("
+              << box.upper.transpose() << ") m holds no node of the organ";
+      return Status::error(message.str());
+    }
+  }
+  world_->addSoftBody(organ_.get());
+  summary_.cells = organ_->model().num_cells();
+  summary_.nodes = organ_->model().num_nodes();
+  summary_.fixed_nodes = organ_->constraints().num_driven();
+  summary_.cell_size = voxels->cell_size.x();
+  summary_.sub_step = organ_->sub_step();
+  return {};
+}
+
+Status SceneWorld::build_table(const Scene& scene) {
+  if (!scene.table.enabled) return {};
+  // a slab whose top is the table's height; thick enough that no vertex passes through it
+  constexpr double kThickness = 0.02;
+  const double half = scene.table.half_size;
+  table_shape_ = std::make_unique<btBoxShape>(to_bt(Eigen::Vector3d(half, half, 0.5 * kThickness)));
+  btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, table_shape_.get());
+  info.m_startWorldTransform.setIdentity();
+  info.m_startWorldTransform.setOrigin(to_bt(Eigen::Vector3d(0, 0, scene.table.height - 0.5 * kThickness)));
+  table_ = std::make_unique<btRigidBody>(info);
+  world_->addRigidBody(table_.get());
+  return {};
+}
+
+Status SceneWorld::build_tools(const Scene& scene) {
+  for (const ToolSpec& spec : scene.tools) {
+    SceneTool tool;
+    tool.name = spec.name;
+    tool.keyframes = spec.keyframes;
+    tool.shape_offset = Eigen::Isometry3d::Identity();
+    if (!spec.mesh.empty()) {
+      LoadOptions load;
+      load.scale = spec.scale;
+      Result<TriangleMesh> mesh = load_mesh(spec.mesh, load);
+      if (!mesh) return Status::error("tool \"" + spec.name + "\" mesh: " + mesh.message());
+      tool.mesh = std::move(mesh).value();
+    }
+    if (spec.capsule) {
+      const double radius = spec.capsule->radius * spec.scale;
+      const double length = spec.capsule->length * spec.scale;
+      if (spec.mesh.empty()) tool.mesh = capsule_mesh(radius, length);
+      // Bullet's capsule is centred on its origin; the tool's frame has the tip there
+      tool.shape = std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius), static_cast<btScalar>(length - 2.0 * radius));
+      tool.shape_offset.translation() = Eigen::Vector3d(0, 0, 0.5 * length);
+    } else {
+      // contact sees the mesh's convex hull; a small margin, as the plugin ignores it (doc section 5)
+      auto hull = std::make_unique<btConvexHullShape>();
+      for (int v = 0; v < tool.mesh.num_vertices(); ++v) hull->addPoint(to_bt(Eigen::Vector3d(tool.mesh.vertices.col(v))), false);
+      hull->recalcLocalAabb();
+      hull->setMargin(0.0005f);
+      tool.shape = std::move(hull);
+    }
+    btRigidBody::btRigidBodyConstructionInfo info(0.0, nullptr, tool.shape.get());
+    info.m_startWorldTransform = to_bt(pose_at(spec.keyframes, 0.0) * tool.shape_offset);
+    tool.body = std::make_unique<btRigidBody>(info);
+    tool.body->setCollisionFlags(tool.body->getCollisionFlags() | btCollisionObject::CF_KINEMATIC_OBJECT);
+    tool.body->setActivationState(DISABLE_DEACTIVATION);
+    world_->addRigidBody(tool.body.get());
+    tools_.push_back(std::move(tool));
+  }
+  return {};
+}
+
+void SceneWorld::place_tools(double t) {
+  for (SceneTool& tool : tools_) tool.body->setWorldTransform(to_bt(pose_at(tool.keyframes, t) * tool.shape_offset));
+}
+
+Status SceneWorld::step(double dt) {
+  world_->stepSimulation(static_cast<btScalar>(dt), 1, static_cast<btScalar>(dt));
+  if (!world_->getSoftBodyError().empty()) return Status::error("the organ went unstable: " + world_->getSoftBodyError());
+  return {};
+}
+
+Eigen::Isometry3d SceneWorld::tool_pose(const SceneTool& tool) const {
+  return to_eigen(tool.body->getWorldTransform()) * tool.shape_offset.inverse();
+}
+
+}  // namespace cubespring::app

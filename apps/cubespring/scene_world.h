@@ -1,0 +1,82 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// A scene made physical: the organ as a cubespring soft body in a Bullet world, the table as a
+// static box, the tools as kinematic bodies that follow their key frames.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <btBulletDynamicsCommon.h>
+
+#include "cubespring/bullet/world.h"
+#include "cubespring/result.h"
+#include "cubespring/triangle_mesh.h"
+#include "scene.h"
+
+namespace cubespring::app {
+
+struct SceneTool {
+  std::string name;
+  std::vector<Keyframe> keyframes;
+  TriangleMesh mesh;                  ///< in the tool's frame (tip at the origin), for drawing
+  Eigen::Isometry3d shape_offset = Eigen::Isometry3d::Identity();  ///< collision body in the tool's frame
+  std::unique_ptr<btCollisionShape> shape;
+  std::unique_ptr<btRigidBody> body;  ///< kinematic
+};
+
+/// What the organ became, for the log.
+struct OrganSummary {
+  int cells = 0;
+  int nodes = 0;
+  int fixed_nodes = 0;
+  double cell_size = 0.0;  ///< [m]
+  double sub_step = 0.0;   ///< the soft body's sub-step [s]
+  std::vector<std::string> notes;  ///< e.g. parts that took the default tissue
+};
+
+class SceneWorld {
+ public:
+  /// Loads and voxelizes the organ, builds every body and puts the tools at their t = 0 poses.
+  /// Errors name the scene file and key at fault where a key is at fault.
+  static Result<std::unique_ptr<SceneWorld>> create(const Scene& scene);
+  ~SceneWorld();
+  SceneWorld(const SceneWorld&) = delete;
+  SceneWorld& operator=(const SceneWorld&) = delete;
+
+  /// Moves every tool to its pose at time t [s] (kinematic: Bullet derives its velocity).
+  void place_tools(double t);
+  /// One Bullet step of dt [s] with the tools already placed at the step's end; an error when the
+  /// organ went unstable.
+  Status step(double dt);
+
+  bullet::World& world() { return *world_; }
+  bullet::SoftBody& organ() { return *organ_; }
+  const TriangleMesh& organ_mesh() const { return organ_mesh_; }
+  const std::vector<SceneTool>& tools() const { return tools_; }
+  const OrganSummary& summary() const { return summary_; }
+  /// The world pose of a tool's frame now.
+  Eigen::Isometry3d tool_pose(const SceneTool& tool) const;
+
+ private:
+  SceneWorld();
+  Status build_organ(const Scene& scene);
+  Status build_table(const Scene& scene);
+  Status build_tools(const Scene& scene);
+
+  std::unique_ptr<btDefaultCollisionConfiguration> configuration_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btDbvtBroadphase> broadphase_;
+  std::unique_ptr<btSequentialImpulseConstraintSolver> solver_;
+  std::unique_ptr<bullet::World> world_;
+  std::unique_ptr<bullet::SoftBody> organ_;
+  TriangleMesh organ_mesh_;
+  std::unique_ptr<btCollisionShape> table_shape_;
+  std::unique_ptr<btRigidBody> table_;
+  std::vector<SceneTool> tools_;
+  OrganSummary summary_;
+};
+
+}  // namespace cubespring::app

@@ -1,0 +1,455 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// `cubespring run`, the headless surgical demo, as a user runs it: the default scene end to end
+// (frames, the tool force CSV and its plot), what its pictures and forces show, and the errors a
+// bad scene file gives.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "cubespring/render/camera.h"
+#include "cubespring/render/image.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ToolRun {
+  int exit_code = -1;
+  std::string out;  // stdout and stderr together
+};
+
+ToolRun run_tool(const std::string& arguments) {
+  const std::string command = std::string(CUBESPRING_CLI_PATH) + " " + arguments + " 2>&1";
+  ToolRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.out += buffer.data();
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+// A fresh folder for one test, removed at the end.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (fs::temp_directory_path() / "cubespring_demo_XXXXXX").string();
+    path_ = mkdtemp(pattern.data());
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+const std::string kDefaultScene = std::string(CUBESPRING_DATA_DIR) + "/scenes/liver_probe.json";
+
+nlohmann::json read_scene_json(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return nlohmann::json::parse(text.str(), nullptr, true, /*ignore_comments=*/true);
+}
+
+Eigen::Vector3d vector3(const nlohmann::json& array) {
+  return {array[0].get<double>(), array[1].get<double>(), array[2].get<double>()};
+}
+
+// The probe's key frames: (time, tip position); the test scene keeps the tool upright.
+struct Key {
+  double time;
+  Eigen::Vector3d position;
+};
+
+std::vector<Key> probe_keys(const nlohmann::json& scene) {
+  std::vector<Key> keys;
+  for (const auto& k : scene["tools"][0]["keyframes"]) keys.push_back({k["time"].get<double>(), vector3(k["position"])});
+  return keys;
+}
+
+Eigen::Vector3d tip_at(const std::vector<Key>& keys, double t) {
+  if (t <= keys.front().time) return keys.front().position;
+  for (std::size_t i = 1; i < keys.size(); ++i) {
+    if (t <= keys[i].time) {
+      const double s = (t - keys[i - 1].time) / (keys[i].time - keys[i - 1].time);
+      return (1 - s) * keys[i - 1].position + s * keys[i].position;
+    }
+  }
+  return keys.back().position;
+}
+
+struct ForceRow {
+  double time;
+  std::string tool;
+  double magnitude;
+};
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  return fields;
+}
+
+double mean_force(const std::vector<ForceRow>& rows, double from, double to) {
+  double sum = 0;
+  int count = 0;
+  for (const ForceRow& row : rows) {
+    if (row.time >= from - 1e-9 && row.time <= to + 1e-9) {
+      sum += row.magnitude;
+      ++count;
+    }
+  }
+  EXPECT_GT(count, 0) << "no CSV rows between " << from << " and " << to << " s";
+  return count > 0 ? sum / count : 0.0;
+}
+
+double distance_to_segment(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d ab = b - a;
+  const double s = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-12), 0.0, 1.0);
+  return (p - (a + s * ab)).norm();
+}
+
+int channel_difference(const cubespring::Image& a, const cubespring::Image& b, int x, int y) {
+  int most = 0;
+  for (int c = 0; c < 3; ++c) most = std::max(most, std::abs(int(a.pixel(x, y)[c]) - int(b.pixel(x, y)[c])));
+  return most;
+}
+
+// The default scene at a small size: everything the demo promises, from one run (it takes most
+// of this test's time, so (a) and (c) of the issue share it).
+TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
+  constexpr int kWidth = 160;
+  constexpr int kHeight = 90;
+  constexpr int kFrames = 6;
+  const TempDir dir;
+  const fs::path out = dir.path() / "out";
+  const ToolRun run = run_tool("run --width " + std::to_string(kWidth) + " --height " + std::to_string(kHeight) +
+                               " --frames " + std::to_string(kFrames) + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find("wrote 6 frames, tool_forces.csv and tool_force.png to " + out.string()), std::string::npos)
+      << run.out;
+
+  const nlohmann::json scene = read_scene_json(kDefaultScene);
+  const std::vector<Key> keys = probe_keys(scene);
+  ASSERT_EQ(keys.size(), 5u) << "approach, contact, pressed, dragged, released";
+  const double duration = scene["duration"].get<double>();
+  const double dt = scene["time_step"].get<double>();
+
+  // the files
+  for (int f = 0; f < kFrames; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", f);
+    const cubespring::Result<cubespring::Image> frame = cubespring::read_png((out / name).string());
+    ASSERT_TRUE(frame.ok()) << frame.message();
+    EXPECT_EQ(frame->width, kWidth);
+    EXPECT_EQ(frame->height, kHeight);
+  }
+  EXPECT_FALSE(fs::exists(out / "frame_0006.png"));
+  const cubespring::Result<cubespring::Image> plot = cubespring::read_png((out / "tool_force.png").string());
+  ASSERT_TRUE(plot.ok()) << plot.message();
+  EXPECT_GT(plot->width, 100);
+
+  // the CSV: the documented header, one row per step per tool, times in order
+  std::ifstream csv(out / "tool_forces.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  EXPECT_EQ(line, "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts");
+  std::vector<ForceRow> rows;
+  while (std::getline(csv, line)) {
+    const std::vector<std::string> fields = split(line);
+    ASSERT_EQ(fields.size(), 10u) << line;
+    const double fx = std::stod(fields[2]);
+    const double fy = std::stod(fields[3]);
+    const double fz = std::stod(fields[4]);
+    const double magnitude = std::stod(fields[5]);
+    EXPECT_NEAR(magnitude, std::sqrt(fx * fx + fy * fy + fz * fz), 1e-6 * (1 + magnitude)) << line;
+    if (!rows.empty()) {
+      EXPECT_GT(std::stod(fields[0]), rows.back().time) << line;
+    }
+    rows.push_back({std::stod(fields[0]), fields[1], magnitude});
+  }
+  ASSERT_EQ(static_cast<long>(rows.size()), std::lround(duration / dt)) << "one row per step for the one tool";
+  EXPECT_TRUE(std::all_of(rows.begin(), rows.end(), [](const ForceRow& r) { return r.tool == "probe"; }));
+  EXPECT_NEAR(rows.back().time, duration, 1e-6);
+
+  // the force: largest while the probe is in the tissue, rising as it presses, gone after release
+  const auto peak = std::max_element(rows.begin(), rows.end(),
+                                     [](const ForceRow& a, const ForceRow& b) { return a.magnitude < b.magnitude; });
+  EXPECT_GE(peak->time, keys[1].time);
+  EXPECT_LE(peak->time, keys[4].time);
+  const double window = 0.25;
+  const double at_start = mean_force(rows, 0.0, window);
+  const double at_end = mean_force(rows, duration - window, duration);
+  EXPECT_GE(peak->magnitude, 10.0 * at_start) << "peak " << peak->magnitude << " N at " << peak->time << " s";
+  EXPECT_GE(peak->magnitude, 10.0 * at_end);
+  EXPECT_GT(peak->magnitude, 0.1) << "a 5 mm probe pressed 1.5 cm into soft tissue";
+  const double press = keys[2].time - keys[1].time;
+  const double early_press = mean_force(rows, keys[1].time + 0.1 * press, keys[1].time + 0.3 * press);
+  const double late_press = mean_force(rows, keys[2].time - 0.2 * press, keys[2].time);
+  EXPECT_GT(late_press, 1.5 * early_press) << "the force rises while the probe presses";
+  const double release = keys[4].time - keys[3].time;
+  const double releasing = mean_force(rows, keys[3].time, keys[3].time + 0.2 * release);
+  const double released = mean_force(rows, keys[4].time - 0.2 * release, keys[4].time);
+  EXPECT_LT(released, 0.5 * releasing) << "the force falls when the probe lets go";
+
+  // (c) a frame during indentation against the rest frame: it differs around the probe's tip and
+  // nowhere far from it, the probe itself aside
+  int pressed_frame = -1;
+  for (int f = 0; f < kFrames; ++f) {
+    const double t = duration * f / (kFrames - 1);
+    if (t > keys[1].time && t < keys[3].time && (pressed_frame < 0 || std::abs(t - keys[2].time) <
+                                                                         std::abs(duration * pressed_frame / (kFrames - 1) - keys[2].time))) {
+      pressed_frame = f;
+    }
+  }
+  ASSERT_GT(pressed_frame, 0);
+  const double t_pressed = duration * pressed_frame / (kFrames - 1);
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.png", pressed_frame);
+  const cubespring::Image rest = cubespring::read_png((out / "frame_0000.png").string()).value();
+  const cubespring::Image pressed = cubespring::read_png((out / name).string()).value();
+
+  cubespring::Camera camera;
+  const nlohmann::json& view = scene["render"]["camera"];
+  camera.position = vector3(view["position"]);
+  camera.target = vector3(view["target"]);
+  camera.up = vector3(view["up"]);
+  camera.vertical_fov_degrees = view["fov"].get<double>();
+  const Eigen::Vector2d tip = camera.project(tip_at(keys, t_pressed), kWidth, kHeight);
+  const double length = scene["tools"][0]["capsule"]["length"].get<double>();
+  // the probe's shaft in either frame: from its tip up to its end
+  const std::array<std::pair<Eigen::Vector2d, Eigen::Vector2d>, 2> shafts{{
+      {camera.project(tip_at(keys, 0.0), kWidth, kHeight),
+       camera.project(tip_at(keys, 0.0) + Eigen::Vector3d(0, 0, length), kWidth, kHeight)},
+      {tip, camera.project(tip_at(keys, t_pressed) + Eigen::Vector3d(0, 0, length), kWidth, kHeight)},
+  }};
+  const auto on_shaft = [&](const Eigen::Vector2d& p) {
+    return std::any_of(shafts.begin(), shafts.end(),
+                       [&](const auto& s) { return distance_to_segment(p, s.first, s.second) < 0.03 * kWidth; });
+  };
+  // near: within 6% of the width of the tip; far: more than a third of the width away; corners:
+  // the bottom 15% of the image at its left and right ends (table only, whatever the tool does)
+  const double near_radius = 0.06 * kWidth;
+  const double far_radius = kWidth / 3.0;
+  const int corner_width = static_cast<int>(0.15 * kWidth);
+  const int corner_top = static_cast<int>(0.85 * kHeight);
+  double near_sum = 0;
+  double far_sum = 0;
+  int near_pixels = 0;
+  int near_changed = 0;
+  int far_pixels = 0;
+  int far_changed_visibly = 0;
+  int corner_pixels = 0;
+  int corner_changed = 0;
+  constexpr int kVisible = 32;  // an eighth of the full scale of a channel
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const Eigen::Vector2d p(x + 0.5, y + 0.5);
+      if (on_shaft(p)) continue;
+      const int difference = channel_difference(rest, pressed, x, y);
+      const double distance = (p - tip).norm();
+      if (distance < near_radius) {
+        ++near_pixels;
+        near_sum += difference;
+        if (difference > 8) ++near_changed;
+      } else if (distance > far_radius) {
+        ++far_pixels;
+        far_sum += difference;
+        if (difference > kVisible) ++far_changed_visibly;
+        if (y >= corner_top && (x < corner_width || x >= kWidth - corner_width)) {
+          ++corner_pixels;
+          if (difference > 0) ++corner_changed;
+        }
+      }
+    }
+  }
+  const double near_mean = near_pixels > 0 ? near_sum / near_pixels : 0.0;
+  const double far_mean = far_pixels > 0 ? far_sum / far_pixels : 0.0;
+  std::printf("frame %d (t = %.2f s), tip at pixel (%.1f, %.1f): near it %d of %d pixels changed (mean %.1f levels); "
+              "far away %d of %d changed by more than %d (mean %.2f levels); %d of %d corner pixels changed\n",
+              pressed_frame, t_pressed, tip.x(), tip.y(), near_changed, near_pixels, near_mean, far_changed_visibly,
+              far_pixels, kVisible, far_mean, corner_changed, corner_pixels);
+  EXPECT_GT(near_pixels, 0);
+  EXPECT_GT(near_changed, near_pixels / 2) << "the tissue around the tip moved";
+  ASSERT_GT(far_pixels, kWidth * kHeight / 4);
+  // the whole organ gives a little under a 1 N push (0.6 mm at 5 cm from a point load on 8 kPa
+  // tissue), which the displacement colours show as a faint shade: far away stays within it
+  EXPECT_LT(far_mean, 0.1 * near_mean) << "far from the probe, the picture hardly changes";
+  EXPECT_LT(far_changed_visibly, far_pixels / 50) << "far from the probe, the picture hardly changes";
+  ASSERT_GT(corner_pixels, 0);
+  EXPECT_EQ(corner_changed, 0) << "the table far from the probe is the same picture";
+}
+
+// A capsule turned on its side by its key frames lies across a small block: it presses only if the
+// orientation (as a quaternion in one key frame, as an axis and angle in the other) turns it.
+TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
+  const TempDir dir;
+  {
+    // a 4 x 4 x 2 cm block on z = 0 with 8 x 8 squares a face: contact acts on the surface's
+    // vertices, so they must be as close as the cells
+    std::ofstream obj(dir.path() / "block.obj");
+    constexpr int kSquares = 8;
+    const auto at = [](int axis, int i) { return axis == 2 ? 0.02 * i / kSquares : -0.02 + 0.04 * i / kSquares; };
+    // each face: the axes u and v across it (u x v points out) and its fixed axis at index `side`
+    const std::array<std::array<int, 4>, 6> faces{{
+        {0, 1, 2, kSquares}, {1, 0, 2, 0}, {0, 2, 1, 0}, {2, 0, 1, kSquares}, {2, 1, 0, 0}, {1, 2, 0, kSquares}}};
+    int first = 1;
+    for (const auto& [u, v, w, side] : faces) {
+      for (int j = 0; j <= kSquares; ++j) {
+        for (int i = 0; i <= kSquares; ++i) {
+          std::array<double, 3> p{};
+          p[static_cast<std::size_t>(u)] = at(u, i);
+          p[static_cast<std::size_t>(v)] = at(v, j);
+          p[static_cast<std::size_t>(w)] = at(w, side);
+          obj << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+        }
+      }
+      for (int j = 0; j < kSquares; ++j) {
+        for (int i = 0; i < kSquares; ++i) {
+          const int a = first + j * (kSquares + 1) + i;
+          const int c = a + kSquares + 2;
+          obj << "f " << a << " " << a + 1 << " " << c << "\nf " << a << " " << c << " " << c - 1 << "\n";
+        }
+      }
+      first += (kSquares + 1) * (kSquares + 1);
+    }
+  }
+  // the tip 6 cm to the left of the block's centre; turned 90 degrees about y, the shaft runs
+  // along +x across the block with its underside 7 mm below the block's top
+  std::ofstream(dir.path() / "scene.json") << R"({
+    "organ": {"mesh": "block.obj", "cell_size": 0.01},
+    "tools": [{"name": "bar", "capsule": {"radius": 0.005, "length": 0.2}, "keyframes": [
+      {"time": 0.0, "position": [-0.06, 0, 0.03], "orientation": [0.70710678, 0, 0.70710678, 0]},
+      {"time": 0.3, "position": [-0.06, 0, 0.018], "rotation": {"axis": [0, 1, 0], "degrees": 90}}]}],
+    "settle_time": 0, "duration": 0.5, "frames": 1, "render": {"width": 16, "height": 16}
+  })";
+  const ToolRun run = run_tool("run " + (dir.path() / "scene.json").string() + " --out " + (dir.path() / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  std::ifstream csv(dir.path() / "out" / "tool_forces.csv");
+  std::string line;
+  std::string last;
+  while (std::getline(csv, line)) last = line;
+  const std::vector<std::string> fields = split(last);
+  ASSERT_EQ(fields.size(), 10u) << last;
+  EXPECT_EQ(fields[1], "bar");
+  const double force_z = std::stod(fields[4]);
+  EXPECT_GT(force_z, 0.1) << "the tissue pushes the bar up: " << last;
+  // about the tip, 6 cm left of where the block pushes: torque_y = -0.06 m x force_z
+  EXPECT_NEAR(std::stod(fields[7]), -0.06 * force_z, 0.1 * 0.06 * force_z) << last;
+}
+
+// A scene file in a temporary folder, run; the tool must fail with a message naming the fault.
+class SceneErrors : public ::testing::Test {
+ protected:
+  ToolRun run_scene(const std::string& text) {
+    const fs::path path = dir_.path() / "scene.json";
+    std::ofstream(path) << text;
+    return run_tool("run " + path.string() + " --frames 1 --width 16 --height 16 --out " + (dir_.path() / "out").string());
+  }
+  static std::string mesh() { return std::string(CUBESPRING_DATA_DIR) + "/liver.obj"; }
+
+  TempDir dir_;
+};
+
+TEST_F(SceneErrors, UnknownKeyNamesTheKeyItsPlaceAndLine) {
+  const ToolRun run = run_scene("{\n  \"organ\": {\"mesh\": \"" + mesh() + "\"},\n  \"render\": {\n    \"camra\": {}\n  }\n}\n");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("scene.json:4: unknown key \"camra\" in \"render\" (expected one of: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("camera"), std::string::npos) << "the keys allowed there are listed: " << run.out;
+  EXPECT_EQ(run.out.rfind("error: ", 0), 0u) << run.out;
+}
+
+TEST_F(SceneErrors, UnknownTopLevelKeyNamesTheKeyAndLine) {
+  const ToolRun run = run_scene("{\n  // a comment is fine\n  \"organ\": {\"mesh\": \"" + mesh() + "\"},\n  \"gravty\": [0, 0, -9.81]\n}\n");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("scene.json:4: unknown key \"gravty\" in the scene"), std::string::npos) << run.out;
+}
+
+TEST_F(SceneErrors, WrongTypeNamesTheKeyAndLine) {
+  const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"" + mesh() +
+                                "\",\n    \"materials\": {\n      \"liver_tissue\": {\n        \"young_modulus\": \"soft\"\n"
+                                "      }\n    }\n  }\n}\n");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("scene.json:6: \"young_modulus\" in \"organ.materials.liver_tissue\" must be a number, got string"),
+            std::string::npos)
+      << run.out;
+}
+
+TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
+  struct Case {
+    std::string scene;
+    std::string expected;
+  };
+  const std::vector<Case> cases{
+      {"{\"frames\": 2.5}", "\"frames\" must be a whole number, got 2.5"},
+      {"{\"tools\": {}}", "\"tools\" must be an array, got object"},
+      {"{\"tools\": [{\"keyframes\": [{\"time\": 0, \"position\": [0, 0]}]}]}",
+       "\"position\" in \"tools[0].keyframes[0]\" must be an array of 3 numbers [x, y, z], got an array of 2 values"},
+      {"{\"render\": {\"wireframe\": \"yes\"}}", "\"wireframe\" in \"render\" must be true or false, got string"},
+      {"{\"organ\": {\"model\": \"springs\"}}", "\"model\" in \"organ\" must be \"baudet2007\" or \"exact-bending\""},
+      {"{\"time_step\": -1}", "\"time_step\" must be > 0, got -1"},
+      {"{\"duration\": 1,\n \"duration\": 2}", "scene.json:2: duplicate key \"duration\""},
+      {"{\"duration\": 1,\n}", "scene.json:2: JSON syntax error"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun run = run_scene(c.scene);
+    EXPECT_NE(run.exit_code, 0) << c.scene;
+    EXPECT_NE(run.out.find(c.expected), std::string::npos) << c.scene << "\n" << run.out;
+  }
+}
+
+TEST_F(SceneErrors, MissingOrganMeshNamesThePath) {
+  const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"no_such_organ.obj\"\n  }\n}\n");
+  EXPECT_NE(run.exit_code, 0);
+  const std::string path = (dir_.path() / "no_such_organ.obj").string();
+  EXPECT_NE(run.out.find("scene.json:3: \"mesh\" in \"organ\" names a mesh file that does not exist: " + path),
+            std::string::npos)
+      << run.out;
+}
+
+TEST_F(SceneErrors, MaterialThatMatchesNoPartNamesIt) {
+  const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"" + mesh() +
+                                "\",\n    \"materials\": {\n      \"tumor_tissue\": {}\n    }\n  }\n}\n");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("scene.json:5: \"tumor_tissue\" in \"organ.materials\" matches no part of"), std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("tumour (material tumour_tissue)"), std::string::npos) << run.out;
+}
+
+TEST(DemoCli, MissingSceneFileIsAnError) {
+  const ToolRun run = run_tool("run /no/such/scene.json");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("error: cannot open the scene file /no/such/scene.json"), std::string::npos) << run.out;
+}
+
+TEST(DemoCli, HelpAndVersionStillAnswer) {
+  const ToolRun help = run_tool("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.out.find("run"), std::string::npos) << help.out;
+  const ToolRun version = run_tool("--version");
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_NE(version.out.find("cubespring"), std::string::npos);
+}
+
+}  // namespace
