@@ -46,6 +46,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arguments.h"
+#include "bench_support.h"
 #include "commands.h"
 #include "cubespring/constraints.h"
 #include "cubespring/experiments.h"
@@ -90,17 +91,6 @@ std::string size_name(const Eigen::Vector3i& n) {
   return name.str();
 }
 
-// The CPU's name, for the record of "this machine" ("" when the system does not say).
-std::string cpu_name() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) != 0) continue;
-    const std::size_t colon = line.find(':');
-    if (colon != std::string::npos) return line.substr(std::min(line.size(), colon + 2));
-  }
-  return "";
-}
 
 // The FE tip deflection [m] for a beam of 4k x k x k cells of 1 cm (NaN for other shapes) and how
 // it was obtained. Linear elasticity under self-weight: a beam scaled by s sags s^2 as much.
@@ -428,18 +418,6 @@ Row run_deformable(const Beam& beam, const BenchBulletOptions& o) {
 
 // ---- the command -----------------------------------------------------------------------------
 
-std::vector<Eigen::Vector3i> parse_size_list(const std::string& text) {
-  std::vector<Eigen::Vector3i> sizes;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ';')) {
-    Result<Eigen::Vector3i> counts = parse_counts("--sizes", item);
-    if (!counts) throw std::runtime_error(counts.message());
-    sizes.push_back(counts.value());
-  }
-  if (sizes.empty()) throw std::runtime_error("--sizes: expected at least one NX,NY,NZ");
-  return sizes;
-}
 
 void check_options(const BenchBulletOptions& o) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arguments.h"
+#include "bench_support.h"
 #include "commands.h"
 #include "cubespring/constraints.h"
 #include "cubespring/integrator.h"
@@ -149,18 +150,6 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o)
     row.implicit_iterations = iterations / std::max(1, steps);
   }
   return row;
-}
-
-std::vector<Eigen::Vector3i> parse_size_list(const std::string& text) {
-  std::vector<Eigen::Vector3i> sizes;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ';')) {
-    Result<Eigen::Vector3i> counts = parse_counts("--sizes", item);
-    if (!counts) throw std::runtime_error(counts.message());
-    sizes.push_back(counts.value());
-  }
-  return sizes;
 }
 
 int run_bench(const BenchOptions& o) {

@@ -25,6 +25,7 @@
 #include <assimp/scene.h>
 #include <nlohmann/json.hpp>
 
+#include "bench_support.h"
 #include "commands.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/shapes.h"
@@ -200,17 +201,6 @@ struct Row {
   double ratio() const { return total() / assimp_read; }
 };
 
-// The CPU's name, for the record of "this machine" ("" when the system does not say).
-std::string cpu_name() {
-  std::ifstream cpuinfo("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(cpuinfo, line)) {
-    if (line.rfind("model name", 0) != 0) continue;
-    const std::size_t colon = line.find(':');
-    if (colon != std::string::npos) return line.substr(std::min(line.size(), colon + 2));
-  }
-  return "";
-}
 
 void check_options(const BenchVoxelizeOptions& o) {
   if (o.triangles.empty() || o.cells_across.empty()) {

@@ -1,0 +1,38 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "bench_support.h"
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "arguments.h"
+
+namespace cubespring::app {
+
+std::string cpu_name() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    if (colon != std::string::npos) return line.substr(std::min(line.size(), colon + 2));
+  }
+  return "";
+}
+
+std::vector<Eigen::Vector3i> parse_size_list(const std::string& text) {
+  std::vector<Eigen::Vector3i> sizes;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ';')) {
+    Result<Eigen::Vector3i> counts = parse_counts("--sizes", item);
+    if (!counts) throw std::runtime_error(counts.message());
+    sizes.push_back(counts.value());
+  }
+  if (sizes.empty()) throw std::runtime_error("--sizes: expected at least one NX,NY,NZ");
+  return sizes;
+}
+
+}  // namespace cubespring::app
