@@ -12,24 +12,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/tool_run.h"
+
 namespace {
 
-struct ToolRun {
-  int exit_code = -1;
-  std::string out;  // stdout and stderr together
-};
-
-ToolRun run_tool(const std::string& arguments, bool merge_stderr = true) {
-  const std::string command = std::string(CUBESPRING_CLI_PATH) + " " + arguments + (merge_stderr ? " 2>&1" : " 2>/dev/null");
-  ToolRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.out += buffer.data();
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using cubespring::test::run_tool;
+using cubespring::test::ToolRun;
 
 nlohmann::json run_json(const std::string& arguments) {
   const ToolRun run = run_tool(arguments + " --json", false);

@@ -20,6 +20,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/tool_run.h"
+
 #include "cubespring/render/camera.h"
 #include "cubespring/render/image.h"
 
@@ -27,22 +29,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ToolRun {
-  int exit_code = -1;
-  std::string out;  // stdout and stderr together
-};
-
-ToolRun run_tool(const std::string& arguments) {
-  const std::string command = std::string(CUBESPRING_CLI_PATH) + " " + arguments + " 2>&1";
-  ToolRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.out += buffer.data();
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using cubespring::test::run_tool;
+using cubespring::test::ToolRun;
 
 // A fresh folder for one test, removed at the end.
 class TempDir {
