@@ -4,12 +4,17 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "arguments.h"
 #include "commands.h"
 #include "cubespring/experiments.h"
+#include "cubespring/fem_comparison.h"
+#ifdef CUBESPRING_HAS_RENDER
+#include "cantilever_picture.h"
+#endif
 
 namespace cubespring::app {
 namespace {
@@ -27,7 +32,54 @@ struct MeasureOptions {
   std::string model = "baudet2007";
   ExactBendingParameters exact_bending;
   bool json = false;
+  std::string png;        // empty: no picture
+  std::string reference;  // empty: no finite-element reference
+  int width = 1280;
+  int height = 720;
+  double magnify = 1;
 };
+
+// The reference's figures, or null where the lattice and the reference share too few nodes.
+nlohmann::json reference_json(const std::string& file, const FemComparison& c) {
+  const auto value = [](const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+  return {{"file", file},
+          {"lattice_nodes", c.lattice_nodes},
+          {"matched_nodes", c.matched_nodes},
+          {"tip_deflection", value(c.reference_tip_deflection)},
+          {"tip_error", value(c.tip_error)},
+          {"mean_nodal_error", value(c.mean_nodal_error)},
+          {"max_nodal_error", value(c.max_nodal_error)}};
+}
+
+void reference_table(const std::string& file, const FemComparison& c) {
+  std::printf("reference %s: %d of %d lattice nodes matched\n", file.c_str(), c.matched_nodes, c.lattice_nodes);
+  if (!c.tip_error) {
+    std::printf("  (no tip comparison: the reference lacks nodes at the lattice's tip nodes)\n");
+    return;
+  }
+  std::printf("  %-16s %14.6e  (lattice %+.2f%%)\n", "FEM tip", *c.reference_tip_deflection, 100 * *c.tip_error);
+  std::printf("  %-16s mean %.2f%%, max %.2f%% of the FEM tip deflection\n", "nodal error", 100 * *c.mean_nodal_error,
+              100 * *c.max_nodal_error);
+}
+
+// Writes the cantilever picture; false (after saying why) when it cannot.
+bool write_picture(const MeasureOptions& o, const ExperimentResult& result, const FemSolution* reference) {
+#ifdef CUBESPRING_HAS_RENDER
+  Result<CantileverPicture> picture = draw_cantilever(result, reference, {o.width, o.height, o.magnify});
+  Status written = picture ? write_png(picture->image, o.png) : picture.status();
+  if (!written) {
+    std::cerr << "error: --png: " << written.message() << "\n";
+    return false;
+  }
+  std::cerr << "wrote " << o.png << "\n";
+  return true;
+#else
+  (void)result;
+  (void)reference;
+  std::cerr << "error: --png: this cubespring was built without the renderer (CUBESPRING_WITH_OSMESA=OFF)\n";
+  return false;
+#endif
+}
 
 nlohmann::json to_json(const Moduli& m) {
   nlohmann::json j = nlohmann::json::object();
@@ -158,15 +210,40 @@ int run_measure(const MeasureOptions& o) {
   }
   settings.cells = cells.value();
   settings.cell_size = cell_size.value();
+  if ((!o.png.empty() || !o.reference.empty()) && experiment.value() != Experiment::kCantilever) {
+    std::cerr << "error: " << (o.png.empty() ? "--reference" : "--png") << ": only the cantilever has a picture "
+              << "and a finite-element reference, not " << o.experiment << "\n";
+    return 2;
+  }
+  std::optional<FemSolution> reference;
+  if (!o.reference.empty()) {
+    Result<FemSolution> read = read_calculix_frd(o.reference);
+    if (!read) {
+      std::cerr << "error: --reference: " << read.message() << "\n";
+      return 2;
+    }
+    reference = std::move(read).value();
+  }
   Result<ExperimentResult> result = run_experiment(experiment.value(), settings);
   if (!result) {
     std::cerr << "error: " << with_flag(result.message()) << "\n";
     return 2;
   }
+  if (!o.png.empty() && !write_picture(o, result.value(), reference ? &*reference : nullptr)) return 1;
+  std::optional<FemComparison> comparison;
+  if (reference) comparison = compare_cantilever_with_fem(result.value(), *reference);
+  if (comparison && comparison->matched_nodes == 0) {
+    std::cerr << "warning: --reference: no node of " << o.reference << " sits at a lattice node; is it the same "
+              << "beam, in metres?\n";
+  }
   if (o.json) {
-    std::cout << report_json(result.value()).dump(2) << "\n";
+    nlohmann::json report = report_json(result.value());
+    if (comparison) report["reference"] = reference_json(o.reference, *comparison);
+    if (!o.png.empty()) report["png"] = o.png;
+    std::cout << report.dump(2) << "\n";
   } else {
     report_table(result.value());
+    if (comparison) reference_table(o.reference, *comparison);
   }
   return 0;
 }
@@ -201,6 +278,15 @@ Command add_measure_command(CLI::App& app) {
                   "exact-bending: twist stiffness as a fraction zeta of G")
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print one JSON object on stdout");
+  cmd->add_option("--png", options->png, "cantilever: draw the deformed lattice coloured by displacement into FILE");
+  cmd->add_option("--reference", options->reference,
+                  "cantilever: a CalculiX result (.frd) of the same beam in metres: compare node by node, and draw "
+                  "the lattice as a wire over the reference's colours");
+  cmd->add_option("--width", options->width, "--png: image width [pixels]")->check(CLI::Range(16, 4096))->capture_default_str();
+  cmd->add_option("--height", options->height, "--png: image height [pixels]")->check(CLI::Range(16, 4096))->capture_default_str();
+  cmd->add_option("--magnify", options->magnify, "--png: draw displacements this many times their size (colours stay true)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   return [options] { return run_measure(*options); };
 }
 

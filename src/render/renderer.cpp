@@ -366,7 +366,7 @@ Status Renderer::draw_mesh_coloured(const Eigen::Matrix3Xd& vertices, const Eige
 }
 
 Status Renderer::draw_lines(const Eigen::Matrix3Xd& points, const Eigen::Matrix2Xi& segments,
-                            const Eigen::Vector3f& colour, float width_pixels) {
+                            const Eigen::Vector3f& colour, float width_pixels, LineVisibility visibility) {
   const char* call = "Renderer::draw_lines";
   if (Status ready = check_drawing(call); !ready) return ready;
   constexpr float kMaxLineWidth = 32.0f;  // rendered widths stay within OpenGL's range (255) up to 8x supersampling
@@ -385,7 +385,10 @@ Status Renderer::draw_lines(const Eigen::Matrix3Xd& points, const Eigen::Matrix2
   glColor3f(colour.x(), colour.y(), colour.z());
   glEnableClientState(GL_VERTEX_ARRAY);
   glVertexPointer(3, GL_DOUBLE, 0, points.data());
+  // without the depth test the lines neither hide nor write depth, so later surfaces cover them
+  if (visibility == LineVisibility::kOverlay) glDisable(GL_DEPTH_TEST);
   glDrawElements(GL_LINES, static_cast<GLsizei>(2 * segments.cols()), GL_UNSIGNED_INT, segments.data());
+  glEnable(GL_DEPTH_TEST);
   glDisableClientState(GL_VERTEX_ARRAY);
   return {};
 }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -84,6 +85,40 @@ TEST(Cli, ExactBendingModelIsSelectableAndNamed) {
   EXPECT_NE(bad.out.find("cubic cells only"), std::string::npos) << bad.out;
 }
 
+// Width and height from a PNG's header (the IHDR chunk follows the 8-byte signature).
+std::pair<int, int> png_size(const std::string& path) {
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr) return {0, 0};
+  std::array<unsigned char, 24> head{};
+  const std::size_t read = std::fread(head.data(), 1, head.size(), file);
+  std::fclose(file);
+  if (read != head.size() || head[1] != 'P' || head[2] != 'N' || head[3] != 'G') return {0, 0};
+  const auto big_endian = [&](int at) { return (head[at] << 24) | (head[at + 1] << 16) | (head[at + 2] << 8) | head[at + 3]; };
+  return {big_endian(16), big_endian(20)};
+}
+
+TEST(Cli, CantileverDrawsItsPictureAndComparesWithAReference) {
+  // one_brick.frd is a CalculiX result for the beam's first cell only: its 8 nodes match, the tip
+  // does not, so there are no error figures
+  const std::string png = ::testing::TempDir() + "cli_cantilever.png";
+  std::remove(png.c_str());
+  const nlohmann::json j = run_json("measure cantilever --cells 8,2,2 --png " + png +
+                                    " --width 320 --height 180 --reference " CUBESPRING_TEST_DATA_DIR
+                                    "/calculix/one_brick.frd");
+  EXPECT_EQ(j["png"], png);
+  EXPECT_EQ(png_size(png), std::make_pair(320, 180));
+  const nlohmann::json& reference = j["reference"];
+  EXPECT_EQ(reference["lattice_nodes"], 9 * 3 * 3);
+  EXPECT_EQ(reference["matched_nodes"], 8);
+  for (const char* key : {"tip_deflection", "tip_error", "mean_nodal_error", "max_nodal_error"}) {
+    EXPECT_TRUE(reference.contains(key) && reference[key].is_null()) << key;
+  }
+  const ToolRun table = run_tool("measure cantilever --cells 8,2,2 --reference " CUBESPRING_TEST_DATA_DIR
+                                 "/calculix/one_brick.frd");
+  EXPECT_EQ(table.exit_code, 0);
+  EXPECT_NE(table.out.find("8 of 81 lattice nodes matched"), std::string::npos) << table.out;
+}
+
 TEST(Cli, TableWithoutJson) {
   const ToolRun run = run_tool("measure elongation");
   EXPECT_EQ(run.exit_code, 0);
@@ -147,6 +182,11 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgument{"measure elongation --young abc", "--young"},
                       BadArgument{"measure elongation --model tetra", "--model"},
                       BadArgument{"measure elongation --model exact-bending --edge-fraction 0", "--edge-fraction"},
+                      BadArgument{"measure elongation --png beam.png", "--png"},
+                      BadArgument{"measure cantilever --reference /nonexistent/beam.frd", "/nonexistent/beam.frd"},
+                      BadArgument{"measure cantilever --reference " CUBESPRING_DATA_DIR "/liver.obj", "no node block"},
+                      BadArgument{"measure cantilever --png /nonexistent/dir/beam.png", "/nonexistent/dir/beam.png"},
+                      BadArgument{"measure cantilever --png beam.png --width 0", "--width"},
                       BadArgument{"voxelize /nonexistent/organ.obj", "/nonexistent/organ.obj"},
                       BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0", "--cell-size"},
                       BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.01 --cells-across 9",

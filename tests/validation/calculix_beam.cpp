@@ -189,12 +189,12 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   deck += "*DLOAD\nEALL,GRAV," + deck_number(spec.gravity) + ",0.,0.,-1.\n";
   // .dat output: one fixed-format block per converged increment
   deck += "*NODE PRINT, NSET=NCORNER\nU\n";
+  // beam.frd: every node and the solid's surface, for `cubespring measure cantilever --reference`
+  deck += "*NODE FILE\nU\n";
   deck += "*END STEP\n";
   return deck;
 }
 
-// Reads a number as Fortran writes it, where an exponent beyond two digits
-// loses its 'E' ("1.234567-100").
 BeamResult fail(std::string message) {
   BeamResult result;
   result.error = std::move(message);

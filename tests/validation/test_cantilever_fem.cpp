@@ -10,7 +10,13 @@
 #include <gtest/gtest.h>
 
 #include "calculix_beam.h"
+#include "cubespring/calculix_result.h"
 #include "cubespring/experiments.h"
+#ifdef CUBESPRING_CLI_PATH
+#include <nlohmann/json.hpp>
+
+#include "cli/tool_run.h"
+#endif
 
 namespace cubespring {
 namespace {
@@ -213,6 +219,47 @@ TEST_P(LargeDeflection, AgainstNonlinearFiniteElements) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SoftMaterials, LargeDeflection, ::testing::Values(1e5, 3e4));
+
+// The .frd file that ccx writes beside its .dat holds the same solution on every node. The tool
+// reads it (`measure cantilever --reference`) and must find what this file finds from the .dat.
+TEST(ReferenceFile, TheToolComparesWithTheFrdAsThisTestDoesWithTheDat) {
+  REQUIRE_CALCULIX();
+  BeamReferenceSpec spec = beam(0.3, {32, 8, 8});
+  spec.gravity = 9.81e-3;  // linear for the lattice too, which the tool solves at this gravity
+  const auto ref = reference(spec, "frd");
+  ASSERT_TRUE(ref);
+  const std::string work_dir = ::testing::TempDir() + "cubespring_ccx_frd";
+  Result<FemSolution> frd = read_calculix_frd(work_dir + "/beam.frd");
+  ASSERT_TRUE(frd) << frd.message();
+  // C3D20R: corners and mid-edge nodes of 32 x 8 x 8 bricks
+  EXPECT_EQ(frd->rest_positions.cols(), 33 * 9 * 9 + 32 * 9 * 9 + 33 * 8 * 9 * 2);
+  int corners = 0;
+  for (Eigen::Index n = 0; n < frd->rest_positions.cols(); ++n) {
+    const std::optional<Eigen::Vector3d> dat = ref->displacement_at(frd->rest_positions.col(n));
+    if (!dat) continue;
+    ++corners;
+    EXPECT_LT((frd->displacements.col(n) - *dat).norm(), 1e-5 * std::abs(ref->tip_deflection())) << n;
+  }
+  EXPECT_EQ(corners, 33 * 9 * 9);
+
+#ifdef CUBESPRING_CLI_PATH
+  const std::string png = work_dir + "/beam.png";
+  const test::ToolRun run = test::run_tool("measure cantilever --gravity 9.81e-3 --json --png " + png +
+                                               " --width 320 --height 180 --reference " + work_dir + "/beam.frd",
+                                           false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const nlohmann::json tool = nlohmann::json::parse(run.out)["reference"];
+  const Comparison mine = compare(lattice(spec, {16, 4, 4}, true), *ref);
+  std::printf("tool: tip error %+.4f%%, nodal mean %.4f%%, max %.4f%%; from the .dat: %+.4f%%, %.4f%%, %.4f%%\n",
+              100 * tool["tip_error"].get<double>(), 100 * tool["mean_nodal_error"].get<double>(),
+              100 * tool["max_nodal_error"].get<double>(), 100 * mine.tip_error, 100 * mine.mean_error,
+              100 * mine.max_error);
+  EXPECT_EQ(tool["matched_nodes"], 17 * 5 * 5);
+  EXPECT_NEAR(tool["tip_error"].get<double>(), mine.tip_error, 1e-4);
+  EXPECT_NEAR(tool["mean_nodal_error"].get<double>(), mine.mean_error, 1e-4);
+  EXPECT_NEAR(tool["max_nodal_error"].get<double>(), mine.max_error, 1e-4);
+#endif
+}
 
 }  // namespace
 }  // namespace cubespring

@@ -27,6 +27,12 @@ struct Light {
 /// A key light from above front left and a weaker, cooler fill light from the right and behind.
 std::vector<Light> default_lights();
 
+/// Whether lines hide behind the surfaces of the frame.
+enum class LineVisibility {
+  kDepthTested,  ///< hidden where a surface is in front of them, like any object
+  kOverlay,      ///< drawn over everything already in the frame, as a see-through wire model
+};
+
 /// Everything about frames that does not change from one frame to the next.
 struct RenderSettings {
   int width = 1280;       ///< output image width [pixels], >= 1
@@ -84,9 +90,10 @@ class Renderer {
   Status draw_mesh_coloured(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xd& normals,
                             const Eigen::Matrix3Xi& triangles, const Eigen::Matrix3Xf& vertex_colours);
   /// Unlit line segments between points (3 x n) [m]; segments (2 x m) are point indices. Lines win
-  /// over surfaces they lie on (surfaces are pushed back slightly in depth).
+  /// over surfaces they lie on (surfaces are pushed back slightly in depth). As an overlay they
+  /// show through the surfaces drawn before them, and surfaces drawn after them cover them.
   Status draw_lines(const Eigen::Matrix3Xd& points, const Eigen::Matrix2Xi& segments, const Eigen::Vector3f& colour,
-                    float width_pixels = 1.0f);
+                    float width_pixels = 1.0f, LineVisibility visibility = LineVisibility::kDepthTested);
   /// A colour bar at the right edge with `high` at the top, `low` at the bottom and their midpoint,
   /// written in a built-in 5x7 pixel font (letters shown upper case), and `label` above it. Drawn
   /// over the scene when the frame ends; a second call in one frame replaces the first.

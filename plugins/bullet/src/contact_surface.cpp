@@ -2,65 +2,18 @@
 // SPDX-License-Identifier: MIT
 #include "contact_surface.h"
 
-#include <array>
-#include <cstdint>
-#include <unordered_map>
-#include <unordered_set>
+#include "cubespring/lattice_surface.h"
 
 namespace cubespring::bullet {
 
-namespace {
-
-std::int64_t grid_key(const Eigen::Vector3i& index) {
-  constexpr std::int64_t kOffset = std::int64_t{1} << 20;
-  return ((index.x() + kOffset) << 42) | ((index.y() + kOffset) << 21) | (index.z() + kOffset);
-}
-
-}  // namespace
-
 ContactSurface lattice_boundary_surface(const Model& model) {
-  std::unordered_set<std::int64_t> occupied;
-  for (const Eigen::Vector3i& cell : model.cell_grid_index) occupied.insert(grid_key(cell));
+  const LatticeSurface boundary = cubespring::lattice_boundary_surface(model);
   ContactSurface surface;
-  std::unordered_map<int, int> vertex_of_node;
-  std::vector<std::array<int, 3>> triangles;
-  const auto vertex = [&](int node) {
-    const auto [it, inserted] = vertex_of_node.emplace(node, static_cast<int>(vertex_of_node.size()));
-    if (inserted) {
-      surface.node.push_back(node);
-      surface.weight.push_back(1.0);
-    }
-    return it->second;
-  };
-  for (int c = 0; c < model.num_cells(); ++c) {
-    const auto& corners = model.cell_nodes[static_cast<std::size_t>(c)];
-    for (int axis = 0; axis < 3; ++axis) {
-      for (int side = 0; side < 2; ++side) {
-        Eigen::Vector3i neighbour = model.cell_grid_index[static_cast<std::size_t>(c)];
-        neighbour[axis] += side == 1 ? 1 : -1;
-        if (occupied.count(grid_key(neighbour)) != 0) continue;
-        // the face's corners in the order (0,0), (1,0), (1,1), (0,1) of the next two axes turn
-        // counter-clockwise about +axis; the low side is turned the other way
-        const int b = (axis + 1) % 3;
-        const int cc = (axis + 2) % 3;
-        std::array<int, 4> quad{};
-        const std::array<std::array<int, 2>, 4> steps{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-        for (std::size_t k = 0; k < 4; ++k) {
-          const int corner = (side << axis) | (steps[k][0] << b) | (steps[k][1] << cc);
-          quad[k] = vertex(corners[static_cast<std::size_t>(corner)]);
-        }
-        if (side == 0) std::swap(quad[1], quad[3]);
-        triangles.push_back({quad[0], quad[1], quad[2]});
-        triangles.push_back({quad[0], quad[2], quad[3]});
-      }
-    }
-  }
-  surface.offset.resize(surface.node.size() + 1);
-  for (std::size_t v = 0; v <= surface.node.size(); ++v) surface.offset[v] = static_cast<int>(v);
-  surface.triangles.resize(3, static_cast<Eigen::Index>(triangles.size()));
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    surface.triangles.col(static_cast<Eigen::Index>(t)) << triangles[t][0], triangles[t][1], triangles[t][2];
-  }
+  surface.node = boundary.nodes;
+  surface.weight.assign(boundary.nodes.size(), 1.0);
+  surface.offset.resize(boundary.nodes.size() + 1);
+  for (std::size_t v = 0; v <= boundary.nodes.size(); ++v) surface.offset[v] = static_cast<int>(v);
+  surface.triangles = boundary.triangles;
   return surface;
 }
 
