@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
 #endif
 #ifdef CUBESPRING_HAS_DEMO
   commands["run"] = cubespring::app::add_run_command(app);
+  commands["bench-render"] = cubespring::app::add_bench_render_command(app);
 #endif
   try {
     app.parse(argc, argv);

@@ -4,14 +4,13 @@
 // one from cubespring's data folder (a probe pressing into a liver with a tumour); it writes
 // numbered PNG frames, the tools' contact forces as CSV and a plot of them.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
 
 #include "commands.h"
-#include "scene.h"
+#include "default_scene.h"
 #include "scene_run.h"
 
 namespace cubespring::app {
@@ -25,32 +24,9 @@ struct RunCommandOptions {
   int height = 0;
 };
 
-// Where the default scene and meshes are: $CUBESPRING_DATA_DIR, else the source tree's data/.
-std::string data_dir() {
-  if (const char* from_environment = std::getenv("CUBESPRING_DATA_DIR"); from_environment && *from_environment) {
-    return from_environment;
-  }
-#ifdef CUBESPRING_DATA_DIR
-  return CUBESPRING_DATA_DIR;
-#else
-  return "";
-#endif
-}
-
 int run(const RunCommandOptions& options) {
   namespace fs = std::filesystem;
-  const std::string data = data_dir();
-  std::string path = options.scene;
-  if (path.empty()) {
-    path = (fs::path(data) / "scenes" / "liver_probe.json").string();
-    std::error_code ignored;
-    if (data.empty() || !fs::is_regular_file(path, ignored)) {
-      std::cerr << "error: no scene given and the default scene " << (data.empty() ? "scenes/liver_probe.json" : path)
-                << " was not found; give a scene file, or set CUBESPRING_DATA_DIR to cubespring's data folder\n";
-      return 1;
-    }
-  }
-  Result<Scene> loaded = load_scene(path, data);
+  Result<Scene> loaded = load_scene_or_default(options.scene);
   if (!loaded) {
     std::cerr << "error: " << loaded.message() << "\n";
     return 1;

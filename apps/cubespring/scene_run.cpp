@@ -68,18 +68,6 @@ std::string seconds(double t) {
   return text;
 }
 
-// The organ comes to rest on the table before the story starts, tools held at their first pose.
-Status settle(SceneWorld& world, const Scene& scene) {
-  const int steps = static_cast<int>(std::lround(scene.settle_time / scene.time_step));
-  world.place_tools(0.0);
-  for (int n = 0; n < steps; ++n) {
-    if (Status s = world.step(scene.time_step); !s) {
-      return Status::error(s.message() + " (while settling, " + seconds(scene.settle_time - n * scene.time_step) +
-                           " before t = 0)");
-    }
-  }
-  return {};
-}
 
 // One CSV row per tool for the step that ended at t, and the magnitudes for the plot.
 void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<ForceSeries>& series) {
@@ -105,6 +93,18 @@ void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<F
 }
 
 }  // namespace
+
+Status settle(SceneWorld& world, const Scene& scene) {
+  const int steps = static_cast<int>(std::lround(scene.settle_time / scene.time_step));
+  world.place_tools(0.0);
+  for (int n = 0; n < steps; ++n) {
+    if (Status s = world.step(scene.time_step); !s) {
+      return Status::error(s.message() + " (while settling, " + seconds(scene.settle_time - n * scene.time_step) +
+                           " before t = 0)");
+    }
+  }
+  return {};
+}
 
 Result<RunOutput> run_scene(const Scene& scene) {
   Result<std::unique_ptr<SceneWorld>> built = SceneWorld::create(scene);

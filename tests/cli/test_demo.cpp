@@ -431,6 +431,31 @@ TEST(DemoCli, MissingSceneFileIsAnError) {
   EXPECT_NE(run.out.find("error: cannot open the scene file /no/such/scene.json"), std::string::npos) << run.out;
 }
 
+TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
+  const ToolRun run = run_tool("bench-render --frames 2 --seconds 0.02 --sizes '64x36;96x54' --json", false);
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_NEAR(j["physics"]["simulated_seconds"].get<double>(), 0.02, 1e-9);  // 5 steps of the scene's 4 ms
+  EXPECT_GT(j["physics"]["real_time_factor"].get<double>(), 0.0);
+  EXPECT_GT(j["organ"]["cells"].get<int>(), 1000);
+  ASSERT_EQ(j["render"].size(), 2u);
+  EXPECT_EQ(j["render"][1]["width"], 96);
+  EXPECT_EQ(j["render"][1]["height"], 54);
+  for (const nlohmann::json& size : j["render"]) {
+    EXPECT_EQ(size["frames"], 2);
+    // per frame: drawing and writing are each timed, and the rates follow from them
+    const double draw = size["draw_ms"].get<double>();
+    const double png = size["png_ms"].get<double>();
+    ASSERT_GT(draw, 0.0);
+    ASSERT_GT(png, 0.0);
+    EXPECT_NEAR(size["fps"].get<double>(), 1e3 / draw, 1e-9 * size["fps"].get<double>());
+    EXPECT_NEAR(size["fps_with_png"].get<double>(), 1e3 / (draw + png), 1e-9 * size["fps"].get<double>());
+  }
+  const ToolRun bad = run_tool("bench-render --sizes 640x10");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.out.find("--sizes: '640x10' is not WIDTHxHEIGHT"), std::string::npos) << bad.out;
+}
+
 TEST(DemoCli, HelpAndVersionStillAnswer) {
   const ToolRun help = run_tool("--help");
   EXPECT_EQ(help.exit_code, 0);
