@@ -11,9 +11,8 @@
 
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 #include <BulletCollision/CollisionShapes/btPolyhedralConvexShape.h>
-#include <LinearMath/btConvexHullComputer.h>
-
 #include "conversions.h"
+#include "hull_planes.h"
 
 namespace cubespring::bullet {
 
@@ -70,49 +69,35 @@ std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, i
   return Eigen::Vector3d(away / distance * (radius - distance));
 }
 
-// A convex polyhedron as the planes of its hull's faces, each oriented away from the hull's
-// centroid (the hull computer's face order is not documented, the centroid is unambiguous).
-std::vector<Eigen::Vector4d> hull_planes(const btPolyhedralConvexShape& shape) {
-  std::vector<btVector3> points(static_cast<std::size_t>(shape.getNumVertices()));
-  for (int i = 0; i < shape.getNumVertices(); ++i) shape.getVertex(i, points[static_cast<std::size_t>(i)]);
-  btConvexHullComputer hull;
-  if (points.size() < 4) return {};
-  hull.compute(&points[0].getX(), sizeof(btVector3), static_cast<int>(points.size()), 0, 0);
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  for (int v = 0; v < hull.vertices.size(); ++v) centroid += to_eigen(hull.vertices[v]);
-  centroid /= std::max(1, hull.vertices.size());
-  std::vector<Eigen::Vector4d> planes;
-  for (int f = 0; f < hull.faces.size(); ++f) {
-    const btConvexHullComputer::Edge* edge = &hull.edges[hull.faces[f]];
-    const Eigen::Vector3d a = to_eigen(hull.vertices[edge->getSourceVertex()]);
-    const Eigen::Vector3d b = to_eigen(hull.vertices[edge->getTargetVertex()]);
-    const Eigen::Vector3d c = to_eigen(hull.vertices[edge->getNextEdgeOfFace()->getTargetVertex()]);
-    Eigen::Vector3d normal = (b - a).cross(c - a);
-    if (normal.squaredNorm() == 0.0) continue;
-    normal.normalize();
-    if (normal.dot(a - centroid) < 0.0) normal = -normal;
-    planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a));
+// A convex polyhedron by its hull's planes; any other convex shape by the hull of its support
+// points. Hulls are asked once per vertex and sub-step: their planes are kept per shape, per
+// thread, and rebuilt when the shape no longer has the support points it had (changed, or
+// another shape at the same address).
+std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen::Vector3d& p) {
+  struct Entry {
+    Eigen::Matrix3d fingerprint = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+    std::vector<Eigen::Vector4d> planes;
+  };
+  thread_local std::map<const btConvexShape*, Entry> cache;
+  Eigen::Matrix3d fingerprint;
+  for (int axis = 0; axis < 3; ++axis) {
+    btVector3 direction(0, 0, 0);
+    direction[axis] = 1;
+    fingerprint.col(axis) = to_eigen(shape.localGetSupportingVertex(direction));
   }
-  return planes;
-}
-
-std::optional<Eigen::Vector3d> polyhedron_push(const btPolyhedralConvexShape& shape, const Eigen::Vector3d& p) {
-  // hulls are asked once per vertex and sub-step: their planes are kept per shape, per thread
-  thread_local std::map<const btPolyhedralConvexShape*, std::pair<int, std::vector<Eigen::Vector4d>>> cache;
-  auto& entry = cache[&shape];
-  if (entry.second.empty() || entry.first != shape.getNumVertices()) entry = {shape.getNumVertices(), hull_planes(shape)};
-  double best_room = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d best_normal = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector4d& plane : entry.second) {
-    const double room = plane.w() - plane.head<3>().dot(p);
-    if (room <= 0.0) return std::nullopt;
-    if (room < best_room) {
-      best_room = room;
-      best_normal = plane.head<3>();
+  Entry& entry = cache[&shape];
+  if (entry.fingerprint != fingerprint) {
+    std::vector<btVector3> points;
+    if (shape.isPolyhedral()) {
+      const auto& polyhedron = static_cast<const btPolyhedralConvexShape&>(shape);
+      points.resize(static_cast<std::size_t>(polyhedron.getNumVertices()));
+      for (int i = 0; i < polyhedron.getNumVertices(); ++i) polyhedron.getVertex(i, points[static_cast<std::size_t>(i)]);
+    } else {
+      points = support_points(shape);
     }
+    entry = {fingerprint, hull_planes(points)};
   }
-  if (!std::isfinite(best_room)) return std::nullopt;
-  return Eigen::Vector3d(best_room * best_normal);
+  return push_out_of_planes(entry.planes, p);
 }
 
 std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const btTransform& transform,
@@ -141,8 +126,8 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       push = cylinder_push(static_cast<double>(cylinder.getRadius()), half[axis], axis, p);
       break;
     }
-    default:
-      if (convex.isPolyhedral()) push = polyhedron_push(static_cast<const btPolyhedralConvexShape&>(convex), p);
+    default:  // convex hulls, cones, multi-spheres, scaled and user shapes
+      push = hull_push(convex, p);
       break;
   }
   if (!push) return std::nullopt;

@@ -16,8 +16,8 @@ namespace cubespring::bullet {
 /// outward); nothing when it is clear of the shape. Convex shapes, compounds of them, static
 /// planes and concave triangle meshes (one-sided: inside means behind the nearest triangle, less
 /// than `thickness` deep). Spheres, boxes, capsules, cylinders and convex polyhedra (hulls) are
-/// tested exactly in their own frame; other convex shapes (cones, scaled or user shapes) do not
-/// take part in contact yet.
+/// tested exactly in their own frame; every other convex shape (cones, multi-spheres, scaled or
+/// user shapes) against the hull of its support points (hull_planes.h).
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& point, double tolerance, double thickness);
 
