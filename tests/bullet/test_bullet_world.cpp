@@ -3,6 +3,7 @@
 // cubespring bodies in a Bullet world: reactions against weights and Hooke's law, momentum
 // exchanged with rigid bodies, anchors, picking.
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -152,6 +153,43 @@ TEST(BulletWorld, AnchoredBlockHangsAndFallsWhenDetached) {
   const double fall = 9.81 / alpha * (0.2 - (1.0 - std::exp(-alpha * 0.2)) / alpha);
   EXPECT_NEAR(hanging - soft->state().positions.row(2).minCoeff(), fall, 0.05 * fall);
   EXPECT_FALSE(soft->detach(*anchor).ok());
+}
+
+TEST(BulletWorld, AnUnstableBodyStopsAndResetsToAStateSavedBefore) {
+  BulletScene scene;
+  scene.add_floor();
+  bullet::SoftBody* soft = scene.add_soft(block({2, 2, 2}, kCell, tissue()));
+  ASSERT_NE(soft, nullptr);
+  scene.run(0.1);
+  const State saved = soft->state();
+  // a kick far beyond what the tissue can carry: the step reports it instead of running away
+  soft->state().velocities.col(0).setConstant(1e6);
+  scene.run(1.0 / 60.0);
+  const std::string error = scene.world().getSoftBodyError();
+  EXPECT_NE(error.find("soft body stopped at t = "), std::string::npos) << error;
+  EXPECT_EQ(error, soft->stop_message());
+  EXPECT_FALSE(soft->last_report().ok());
+  ASSERT_TRUE(soft->state().positions.allFinite());
+  const Eigen::Matrix3Xd stopped = soft->state().positions;
+  scene.run(0.1);
+  EXPECT_EQ(soft->state().positions, stopped);  // no longer advanced
+
+  State wrong = saved;
+  wrong.velocities.resize(3, 2);
+  const Status refused = soft->reset(wrong);
+  EXPECT_NE(refused.message().find("has 27 positions and 2 velocities; the body has 27 nodes"), std::string::npos)
+      << refused.message();
+  State not_finite = saved;
+  not_finite.positions(2, 3) = std::nan("");
+  EXPECT_NE(soft->reset(not_finite).message().find("NaN or infinite"), std::string::npos);
+  EXPECT_EQ(soft->state().positions, stopped);  // refused resets change nothing
+
+  ASSERT_TRUE(soft->reset(saved).ok());
+  EXPECT_TRUE(scene.world().getSoftBodyError().empty());
+  scene.run(0.5);
+  EXPECT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  EXPECT_GT(soft->state().time, saved.time + 0.45);  // it steps again, and rests where it rested
+  EXPECT_LT((soft->state().positions - saved.positions).cwiseAbs().maxCoeff(), 0.05 * kCell);
 }
 
 TEST(BulletWorld, PickingFindsTheFaceAndNodeUnderARay) {

@@ -69,6 +69,23 @@ void SoftBody::update_surface() {
   }
 }
 
+Status SoftBody::reset(const State& state) {
+  const auto nodes = static_cast<Eigen::Index>(model_.num_nodes());
+  if (state.positions.cols() != nodes || state.velocities.cols() != nodes) {
+    return Status::error("SoftBody::reset: the state has " + std::to_string(state.positions.cols()) + " positions and " +
+                         std::to_string(state.velocities.cols()) + " velocities; the body has " +
+                         std::to_string(nodes) + " nodes");
+  }
+  if (!state.positions.allFinite() || !state.velocities.allFinite() || !std::isfinite(state.time)) {
+    return Status::error("SoftBody::reset: the state has a NaN or infinite position, velocity or time");
+  }
+  state_ = state;
+  last_report_ = StepReport{};
+  stop_message_.clear();
+  update_surface();
+  return {};
+}
+
 Result<int> SoftBody::anchor(btRigidBody* body, const std::vector<int>& nodes) {
   if (body == nullptr) return Status::error("anchor: the rigid body is null");
   if (nodes.empty()) return Status::error("anchor: no nodes given");

@@ -53,6 +53,14 @@ void World::addSoftBody(SoftBody* body) {
   }
 }
 
+const std::string& World::getSoftBodyError() const {
+  static const std::string kNone;
+  for (const SoftBody* body : soft_bodies_) {
+    if (!body->stop_message().empty()) return body->stop_message();
+  }
+  return kNone;
+}
+
 void World::removeSoftBody(SoftBody* body) {
   soft_bodies_.erase(std::remove(soft_bodies_.begin(), soft_bodies_.end(), body), soft_bodies_.end());
   const std::lock_guard<std::mutex> lock(wrench_mutex_);
@@ -150,7 +158,7 @@ void World::advance_soft_body(SoftBody& body, double step_length) {
                                                   body.state_);
     body.last_report_ = report;
     if (!report.ok()) {
-      soft_body_error_ = "soft body stopped at t = " + std::to_string(time_ + k * dt) + " s: " + report.message;
+      body.stop_message_ = "soft body stopped at t = " + std::to_string(time_ + k * dt) + " s: " + report.message;
       break;
     }
     body.update_surface();

@@ -103,6 +103,12 @@ class SoftBody {
   double sub_step() const { return sub_step_; }
   /// The last sub-step's report; a world step stops advancing a body that went unstable.
   const StepReport& last_report() const { return last_report_; }
+  /// Why the world stopped advancing this body, with when; empty while it steps normally.
+  const std::string& stop_message() const { return stop_message_; }
+  /// Puts the body in `state` (one saved before it went unstable, or rest_state(model())) and
+  /// lets the world advance it again. A state of another size or with a non-finite value is
+  /// refused with an error that says which, and nothing changes.
+  Status reset(const State& state);
 
  private:
   friend class World;
@@ -119,6 +125,7 @@ class SoftBody {
   ContactSettings contact_;
   double sub_step_ = 0.0;
   StepReport last_report_;
+  std::string stop_message_;
 
   // contact surface: vertex v sits at sum over its entries of weight * node position
   std::vector<int> surface_offset_;  // num_vertices + 1

@@ -45,9 +45,10 @@ class World : public btDiscreteDynamicsWorld {
   /// another thread while the world steps (a 1 kHz haptic loop).
   ContactWrench getContactWrench(const btCollisionObject* object) const;
 
-  /// Empty while every soft body steps normally; else what stopped one (it is then left as it
-  /// was at the start of the failing sub-step and no longer advanced until reset).
-  const std::string& getSoftBodyError() const { return soft_body_error_; }
+  /// Empty while every soft body steps normally; else what stopped the first one that stopped
+  /// (it is then left as it was at the start of the failing sub-step, and no longer advanced
+  /// until SoftBody::reset()).
+  const std::string& getSoftBodyError() const;
 
  protected:
   void internalSingleStepSimulation(btScalar timeStep) override;
@@ -63,7 +64,6 @@ class World : public btDiscreteDynamicsWorld {
   std::map<const btCollisionObject*, std::map<const SoftBody*, ContactWrench>> wrenches_;
   std::set<const btCollisionObject*> constrained_;  // bodies a joint holds, this step
   double time_ = 0.0;
-  std::string soft_body_error_;
 };
 
 }  // namespace cubespring::bullet
