@@ -61,13 +61,14 @@ RigidTrack start_track(const btCollisionObject* object, bool constrained) {
   return track;
 }
 
-void advance_track(RigidTrack& track, double t, double dt, double step_length) {
-  if (track.body == nullptr || track.object->isStaticObject()) return;
+void advance_track(RigidTrack& track, double t, double dt, double kinematic_pose_time) {
+  if (track.body == nullptr) return;
+  // kinematic first: Bullet marks a kinematic body of mass 0 (the usual way to make one) static too
   if (track.object->isKinematicObject()) {
-    // pose at t + dt, counted back from the step's end
+    // pose at t + dt, counted back from where it stands at the call's end
     btTransformUtil::integrateTransform(track.object->getWorldTransform(), to_bt(track.linear_velocity),
-                                        to_bt(track.angular_velocity), static_cast<btScalar>(t + dt - step_length),
-                                        track.transform);
+                                        to_bt(track.angular_velocity),
+                                        static_cast<btScalar>(t + dt - kinematic_pose_time), track.transform);
     return;
   }
   if (!track.dynamic) return;

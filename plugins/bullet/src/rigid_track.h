@@ -46,8 +46,10 @@ struct RigidTrack {
 /// (a joint) holds it.
 RigidTrack start_track(const btCollisionObject* object, bool constrained);
 
-/// Moves the track to the end of a sub-step [t, t + dt] of a Bullet step of length step_length.
-void advance_track(RigidTrack& track, double t, double dt, double step_length);
+/// Moves the track to the end of a sub-step [t, t + dt] of a Bullet step (times from the step's
+/// start [s]). A kinematic body stands at its world transform at `kinematic_pose_time`: the end of
+/// the stepSimulation() call, which may hold several steps.
+void advance_track(RigidTrack& track, double t, double dt, double kinematic_pose_time);
 
 /// Adds the sub-step's impulses to the step's.
 void finish_substep(RigidTrack& track);

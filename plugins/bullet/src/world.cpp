@@ -89,9 +89,21 @@ void World::internalSingleStepSimulation(btScalar timeStep) {
     constrained_.insert(&constraint->getRigidBodyA());
     constrained_.insert(&constraint->getRigidBodyB());
   }
-  for (SoftBody* body : soft_bodies_) advance_soft_body(*body, static_cast<double>(timeStep));
+  // kinematic bodies stand where they are at the end of the stepSimulation() call; this internal
+  // step ends `kinematic_pose_time` before that (relative to its own start: when they stand there)
+  const double step = static_cast<double>(timeStep);
+  const bool inside_call = kinematic_elapsed_ + step <= kinematic_span_ * (1 + 1e-6);
+  const double kinematic_pose_time = inside_call ? kinematic_span_ - kinematic_elapsed_ : step;
+  for (SoftBody* body : soft_bodies_) advance_soft_body(*body, step, kinematic_pose_time);
   btDiscreteDynamicsWorld::internalSingleStepSimulation(timeStep);
-  time_ += static_cast<double>(timeStep);
+  time_ += step;
+  kinematic_elapsed_ += step;
+}
+
+void World::saveKinematicState(btScalar timeStep) {
+  btDiscreteDynamicsWorld::saveKinematicState(timeStep);
+  kinematic_span_ = static_cast<double>(timeStep);
+  kinematic_elapsed_ = 0.0;
 }
 
 // Anchors: static and kinematic bodies drive their nodes; dynamic ones pull them by a spring as
@@ -120,7 +132,7 @@ void World::drive_anchors(SoftBody& body, std::vector<RigidTrack>& tracks, const
   }
 }
 
-void World::advance_soft_body(SoftBody& body, double step_length) {
+void World::advance_soft_body(SoftBody& body, double step_length, double kinematic_pose_time) {
   if (!body.last_report_.ok()) return;
   body.loads_.gravity = to_eigen(getGravity());
   {
@@ -150,7 +162,7 @@ void World::advance_soft_body(SoftBody& body, double step_length) {
       track.substep_impulse.setZero();
       track.substep_angular_impulse.setZero();
       track.substep_contacts = 0;
-      advance_track(track, k * dt, dt, step_length);
+      advance_track(track, k * dt, dt, kinematic_pose_time);
     }
     body.loads_.nodal_forces = user_forces;
     drive_anchors(body, tracks, anchor_track, dt);

@@ -52,9 +52,12 @@ class World : public btDiscreteDynamicsWorld {
 
  protected:
   void internalSingleStepSimulation(btScalar timeStep) override;
+  /// Bullet calls it once per stepSimulation() with the time of all its internal steps: kinematic
+  /// bodies then stand at the call's end, and the internal steps count their poses back from it.
+  void saveKinematicState(btScalar timeStep) override;
 
  private:
-  void advance_soft_body(SoftBody& body, double time_step);
+  void advance_soft_body(SoftBody& body, double time_step, double kinematic_pose_time);
   static void drive_anchors(SoftBody& body, std::vector<struct RigidTrack>& tracks,
                             const std::vector<int>& anchor_track, double dt);
 
@@ -64,6 +67,9 @@ class World : public btDiscreteDynamicsWorld {
   std::map<const btCollisionObject*, std::map<const SoftBody*, ContactWrench>> wrenches_;
   std::set<const btCollisionObject*> constrained_;  // bodies a joint holds, this step
   double time_ = 0.0;
+  // the current stepSimulation() call: its length, and how much of it the internal steps took
+  double kinematic_span_ = 0.0;
+  double kinematic_elapsed_ = 0.0;
 };
 
 }  // namespace cubespring::bullet
