@@ -60,6 +60,12 @@ class Stepper {
   StepReport step(const Model& model, const Constraints& constraints, const Loads& loads,
                   const StepSettings& settings, State& state);
 
+  /// The nodal forces [N] (3 x num_nodes) the last step computed last: for symplectic Euler and
+  /// implicit Euler those at the step's start state, which its kick used (springs, correction,
+  /// damping, gravity, loads); for velocity Verlet those at its end. What held a driven node
+  /// over a symplectic step is its momentum change less dt times its force here.
+  const Eigen::Matrix3Xd& last_forces() const { return forces_; }
+
  private:
   StepReport explicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                            const StepSettings& settings, State& state);

@@ -3,6 +3,7 @@
 // cubespring bodies in a Bullet world: reactions against weights and Hooke's law, momentum
 // exchanged with rigid bodies, anchors, picking.
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -146,6 +147,12 @@ TEST(BulletWorld, AnchoredBlockHangsAndFallsWhenDetached) {
   scene.run(1.0);
   const double hanging = soft->state().positions.row(2).minCoeff();
   EXPECT_NEAR(hanging, 0.045, 0.002);  // it sags a little under its weight, no more
+  // the hook carries the block's whole weight, straight down under its centre
+  const bullet::ContactWrench held = scene.world().getContactWrench(hook);
+  std::printf("hook: %.6f N for a weight of %.6f N\n", held.force.z(), weight(soft->model()));
+  EXPECT_NEAR(held.force.z(), -weight(soft->model()), 0.01 * weight(soft->model()));
+  EXPECT_NEAR(held.force.head<2>().norm(), 0.0, 1e-3 * weight(soft->model()));
+  EXPECT_NEAR(held.torque.norm(), 0.0, 1e-3 * weight(soft->model()) * kCell);
   ASSERT_TRUE(soft->detach(*anchor).ok());
   scene.run(0.2);
   // a free fall against the mass damping alpha: x(t) = g / alpha (t - (1 - exp(-alpha t)) / alpha)

@@ -132,6 +132,32 @@ void World::drive_anchors(SoftBody& body, std::vector<RigidTrack>& tracks, const
   }
 }
 
+bool World::has_held_anchors(const SoftBody& body, const std::vector<RigidTrack>& tracks,
+                             const std::vector<int>& anchor_track) {
+  for (std::size_t a = 0; a < body.anchors_.size(); ++a) {
+    if (body.anchors_[a] && !tracks[static_cast<std::size_t>(anchor_track[a])].dynamic) return true;
+  }
+  return false;
+}
+
+// A static or kinematic anchor drives its nodes; what held them over the sub-step is their
+// momentum change less the impulse of the forces on them, and the tissue pulls the anchor's body
+// by the opposite: dt f - m dv per node (exact for symplectic Euler, whose kick used f).
+void World::report_held_anchors(const SoftBody& body, std::vector<RigidTrack>& tracks,
+                                const std::vector<int>& anchor_track, const Eigen::Matrix3Xd& velocities_before,
+                                double dt) {
+  const Eigen::Matrix3Xd& forces = body.stepper_->last_forces();
+  for (std::size_t a = 0; a < body.anchors_.size(); ++a) {
+    RigidTrack& track = tracks[static_cast<std::size_t>(anchor_track[a])];
+    if (!body.anchors_[a] || track.dynamic) continue;
+    for (const int node : body.anchors_[a]->nodes) {
+      const Eigen::Vector3d momentum_change =
+          body.model_.mass[node] * (body.state_.velocities.col(node) - velocities_before.col(node));
+      track.receive(dt * forces.col(node) - momentum_change, body.state_.positions.col(node), false);
+    }
+  }
+}
+
 void World::advance_soft_body(SoftBody& body, double step_length, double kinematic_pose_time) {
   if (!body.last_report_.ok()) return;
   body.loads_.gravity = to_eigen(getGravity());
@@ -157,6 +183,8 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   const double dt = step_length / substeps;
   const Eigen::Matrix3Xd user_forces = body.loads_.nodal_forces;
   body.step_settings_.time_step = dt;
+  const bool held_anchors = has_held_anchors(body, tracks, anchor_track);
+  Eigen::Matrix3Xd velocities_before;
   for (int k = 0; k < substeps; ++k) {
     for (RigidTrack& track : tracks) {
       track.substep_impulse.setZero();
@@ -166,6 +194,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     }
     body.loads_.nodal_forces = user_forces;
     drive_anchors(body, tracks, anchor_track, dt);
+    if (held_anchors) velocities_before = body.state_.velocities;
     const StepReport report = body.stepper_->step(body.model_, body.constraints_, body.loads_, body.step_settings_,
                                                   body.state_);
     body.last_report_ = report;
@@ -173,6 +202,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
       body.stop_message_ = "soft body stopped at t = " + std::to_string(time_ + k * dt) + " s: " + report.message;
       break;
     }
+    if (held_anchors) report_held_anchors(body, tracks, anchor_track, velocities_before, dt);
     body.update_surface();
 
     // contacts: every surface vertex inside a nearby rigid shape is moved out

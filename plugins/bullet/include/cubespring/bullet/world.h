@@ -60,6 +60,11 @@ class World : public btDiscreteDynamicsWorld {
   void advance_soft_body(SoftBody& body, double time_step, double kinematic_pose_time);
   static void drive_anchors(SoftBody& body, std::vector<struct RigidTrack>& tracks,
                             const std::vector<int>& anchor_track, double dt);
+  static bool has_held_anchors(const SoftBody& body, const std::vector<struct RigidTrack>& tracks,
+                               const std::vector<int>& anchor_track);
+  static void report_held_anchors(const SoftBody& body, std::vector<struct RigidTrack>& tracks,
+                                  const std::vector<int>& anchor_track, const Eigen::Matrix3Xd& velocities_before,
+                                  double dt);
 
   std::vector<SoftBody*> soft_bodies_;
   mutable std::mutex wrench_mutex_;
