@@ -7,6 +7,8 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include <Eigen/Geometry>
+
 namespace cubespring::bullet {
 
 namespace {
@@ -62,6 +64,21 @@ ContactSurface lattice_boundary_surface(const Model& model) {
     surface.triangles.col(static_cast<Eigen::Index>(t)) << triangles[t][0], triangles[t][1], triangles[t][2];
   }
   return surface;
+}
+
+Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles) {
+  Eigen::Matrix3Xd normals = Eigen::Matrix3Xd::Zero(3, positions.cols());
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    const Eigen::Vector3d a = positions.col(triangles(0, t));
+    // twice the area times the unit normal: larger triangles count more
+    const Eigen::Vector3d weighted = (positions.col(triangles(1, t)) - a).cross(positions.col(triangles(2, t)) - a);
+    for (int corner = 0; corner < 3; ++corner) normals.col(triangles(corner, t)) += weighted;
+  }
+  for (Eigen::Index v = 0; v < normals.cols(); ++v) {
+    const double length = normals.col(v).norm();
+    if (length > 0.0) normals.col(v) /= length;
+  }
+  return normals;
 }
 
 ContactSurface embedded_surface(const Model& model, const Embedding& embedding) {

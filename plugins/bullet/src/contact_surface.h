@@ -23,6 +23,10 @@ struct ContactSurface {
 /// each; vertices are the nodes of those faces, weight 1.
 ContactSurface lattice_boundary_surface(const Model& model);
 
+/// The outward unit normal at each vertex of a surface at `positions`: the area-weighted mean of
+/// its triangles' normals (zero for a vertex of no triangle).
+Eigen::Matrix3Xd vertex_normals(const Eigen::Matrix3Xd& positions, const Eigen::Matrix3Xi& triangles);
+
 /// The vertices of an embedded visual mesh, each with the 8 trilinear weights of its cell.
 ContactSurface embedded_surface(const Model& model, const Embedding& embedding);
 
