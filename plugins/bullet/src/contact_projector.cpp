@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <optional>
 
+#include "contact_surface.h"
 #include "conversions.h"
+#include "cubespring/embedding.h"
 #include "rigid_distance.h"
 
 namespace cubespring::bullet {
@@ -14,6 +16,9 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   const double thickness = 2.0 * body_.model_.cell_size.maxCoeff();
   std::vector<char> touched;
   for (RigidTrack& track : tracks) {
+    // the tissue's outward normals, which tell a rigid edge's faces apart; once per track, when
+    // a vertex is near it
+    Eigen::Matrix3Xd normals;
     const btCollisionShape& shape = *track.object->getCollisionShape();
     btVector3 low;
     btVector3 high;
@@ -25,7 +30,9 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
       if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
-      const std::optional<Eigen::Vector3d> push = penetration_push(shape, track.transform, x, 0.0, thickness);
+      if (normals.cols() == 0) vertex_normals(body_.surface_positions_, body_.surface_triangles_, normals);
+      const std::optional<Eigen::Vector3d> push =
+          penetration_push(shape, track.transform, x, normals.col(v), 0.0, thickness);
       if (!push || push->squaredNorm() == 0.0) continue;
       apply_vertex(v, *push, track);
       touched[static_cast<std::size_t>(v)] = 1;

@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 #include "hull_planes.h"
 
+#include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <LinearMath/btConvexHullComputer.h>
 
@@ -33,21 +33,6 @@ std::vector<Eigen::Vector4d> hull_planes(const std::vector<btVector3>& points) {
     planes.emplace_back(normal.x(), normal.y(), normal.z(), normal.dot(a));
   }
   return planes;
-}
-
-std::optional<Eigen::Vector3d> push_out_of_planes(const std::vector<Eigen::Vector4d>& planes, const Eigen::Vector3d& p) {
-  double best_room = std::numeric_limits<double>::infinity();
-  Eigen::Vector3d best_normal = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector4d& plane : planes) {
-    const double room = plane.w() - plane.head<3>().dot(p);
-    if (room <= 0.0) return std::nullopt;
-    if (room < best_room) {
-      best_room = room;
-      best_normal = plane.head<3>();
-    }
-  }
-  if (!std::isfinite(best_room)) return std::nullopt;
-  return Eigen::Vector3d(best_room * best_normal);
 }
 
 std::vector<btVector3> support_points(const btConvexShape& shape) {

@@ -4,7 +4,6 @@
 // sampled one of every other convex shape (docs/bullet-plugin.md, section 2).
 #pragma once
 
-#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -15,9 +14,6 @@ namespace cubespring::bullet {
 /// The planes of the convex hull of `points` (in the shape's frame [m]): unit outward normal and
 /// offset (n, d) with n . x <= d inside. Empty for fewer than 4 points or a flat set.
 std::vector<Eigen::Vector4d> hull_planes(const std::vector<btVector3>& points);
-
-/// The shortest move out through one of the planes for a point inside all of them, else nothing.
-std::optional<Eigen::Vector3d> push_out_of_planes(const std::vector<Eigen::Vector4d>& planes, const Eigen::Vector3d& p);
 
 /// How many directions support_points() samples.
 constexpr int kSupportDirections = 256;

@@ -11,6 +11,7 @@
 
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 #include <BulletCollision/CollisionShapes/btPolyhedralConvexShape.h>
+
 #include "conversions.h"
 #include "hull_planes.h"
 
@@ -27,32 +28,58 @@ std::optional<Eigen::Vector3d> plane_push(const btStaticPlaneShape& plane, const
   return Eigen::Vector3d(std::max(-height, 0.0) * normal);
 }
 
-// The shortest move out of a box centred at the origin (local frame), or nothing when outside.
-std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen::Vector3d& p) {
-  const Eigen::Vector3d room = half - p.cwiseAbs();
-  if ((room.array() <= 0.0).any()) return std::nullopt;
-  int axis = 0;
-  room.minCoeff(&axis);
-  Eigen::Vector3d push = Eigen::Vector3d::Zero();
-  push[axis] = p[axis] >= 0.0 ? room[axis] : -room[axis];
-  return push;
+// A way out of a flat-faced shape: through the face of outward normal `normal`, `room` away [m].
+struct Exit {
+  double room;
+  Eigen::Vector3d normal;
+};
+
+// The move out through one of `exits` (all the faces of a convex shape, in its frame). Inside a
+// face the shortest way out is right, but at an edge it can be a side the tissue only brushes: a
+// box sliding over tissue it has sunk into meets the next row of vertices with its leading face,
+// and pushing them forward makes a wall of them. Which face presses on the tissue is told by the
+// tissue's outward normal `surface_normal` there: the face through which that normal, followed
+// inward, leaves the shape (least room / cos of the angle between the face normal and -normal).
+// The move stays perpendicular to that face. Without a usable normal, the shortest way out.
+Eigen::Vector3d push_through(const std::vector<Exit>& exits, const Eigen::Vector3d& surface_normal) {
+  const Exit* shortest = &exits.front();
+  const Exit* pressed = nullptr;
+  double pressed_reach = std::numeric_limits<double>::infinity();
+  for (const Exit& exit : exits) {
+    if (exit.room < shortest->room) shortest = &exit;
+    const double cosine = -exit.normal.dot(surface_normal);
+    if (cosine > 0.0 && exit.room < pressed_reach * cosine) {
+      pressed = &exit;
+      pressed_reach = exit.room / cosine;
+    }
+  }
+  const Exit& chosen = pressed != nullptr ? *pressed : *shortest;
+  return chosen.room * chosen.normal;
 }
 
-// Round shapes about an axis: out through the side or an end, whichever is shorter.
-std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, int axis, const Eigen::Vector3d& p) {
+// Out of a box centred at the origin (local frame), or nothing when outside.
+std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen::Vector3d& p,
+                                        const Eigen::Vector3d& surface_normal) {
+  const Eigen::Vector3d room = half - p.cwiseAbs();
+  if ((room.array() <= 0.0).any()) return std::nullopt;
+  std::vector<Exit> exits;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double side : {-1.0, 1.0}) exits.push_back({half[axis] - side * p[axis], side * Eigen::Vector3d::Unit(axis)});
+  }
+  return push_through(exits, surface_normal);
+}
+
+// A cylinder about an axis: out through an end or the side, whose face here is its tangent plane.
+std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, int axis, const Eigen::Vector3d& p,
+                                             const Eigen::Vector3d& surface_normal) {
   Eigen::Vector3d radial = p;
   radial[axis] = 0.0;
   const double r = radial.norm();
-  const double side_room = radius - r;
-  const double end_room = half_height - std::abs(p[axis]);
-  if (side_room <= 0.0 || end_room <= 0.0) return std::nullopt;
-  Eigen::Vector3d push = Eigen::Vector3d::Zero();
-  if (end_room < side_room || r == 0.0) {
-    push[axis] = p[axis] >= 0.0 ? end_room : -end_room;
-  } else {
-    push = radial / r * side_room;
-  }
-  return push;
+  if (r >= radius || std::abs(p[axis]) >= half_height) return std::nullopt;
+  std::vector<Exit> exits{{half_height - p[axis], Eigen::Vector3d::Unit(axis)},
+                          {half_height + p[axis], -Eigen::Vector3d::Unit(axis)}};
+  if (r > 0.0) exits.push_back({radius - r, radial / r});
+  return push_through(exits, surface_normal);
 }
 
 std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, int axis, const Eigen::Vector3d& p) {
@@ -73,7 +100,8 @@ std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, i
 // points. Hulls are asked once per vertex and sub-step: their planes are kept per shape, per
 // thread, and rebuilt when the shape no longer has the support points it had (changed, or
 // another shape at the same address).
-std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen::Vector3d& p) {
+std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen::Vector3d& p,
+                                         const Eigen::Vector3d& surface_normal) {
   struct Entry {
     Eigen::Matrix3d fingerprint = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
     std::vector<Eigen::Vector4d> planes;
@@ -97,21 +125,29 @@ std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen
     }
     entry = {fingerprint, hull_planes(points)};
   }
-  return push_out_of_planes(entry.planes, p);
+  if (entry.planes.empty()) return std::nullopt;
+  std::vector<Exit> exits;
+  for (const Eigen::Vector4d& plane : entry.planes) {
+    const double room = plane.w() - plane.head<3>().dot(p);
+    if (room <= 0.0) return std::nullopt;
+    exits.push_back({room, plane.head<3>()});
+  }
+  return push_through(exits, surface_normal);
 }
 
 std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const btTransform& transform,
-                                           const Eigen::Vector3d& point) {
+                                           const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal) {
   // exact inside tests in the shape's frame: Bullet's GJK signed distance is unreliable for
   // points deep inside a shape, which is where a projection needs it most
   const Eigen::Vector3d p = to_eigen(transform.invXform(to_bt(point)));
+  const Eigen::Vector3d n = to_eigen(transform.getBasis().transpose() * to_bt(surface_normal));
   std::optional<Eigen::Vector3d> push;
   switch (convex.getShapeType()) {
     case SPHERE_SHAPE_PROXYTYPE:
       push = capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()), 0.0, 2, p);
       break;
     case BOX_SHAPE_PROXYTYPE:
-      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()), p);
+      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()), p, n);
       break;
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto& capsule = static_cast<const btCapsuleShape&>(convex);
@@ -123,11 +159,11 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       const auto& cylinder = static_cast<const btCylinderShape&>(convex);
       const int axis = cylinder.getUpAxis();
       const Eigen::Vector3d half = to_eigen(cylinder.getHalfExtentsWithMargin());
-      push = cylinder_push(static_cast<double>(cylinder.getRadius()), half[axis], axis, p);
+      push = cylinder_push(static_cast<double>(cylinder.getRadius()), half[axis], axis, p, n);
       break;
     }
     default:  // convex hulls, cones, multi-spheres, scaled and user shapes
-      push = hull_push(convex, p);
+      push = hull_push(convex, p, n);
       break;
   }
   if (!push) return std::nullopt;
@@ -200,7 +236,8 @@ std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const
 }  // namespace
 
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
-                                                const Eigen::Vector3d& point, double tolerance, double thickness) {
+                                                const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
+                                                double tolerance, double thickness) {
   if (shape.getShapeType() == STATIC_PLANE_PROXYTYPE) {
     return plane_push(static_cast<const btStaticPlaneShape&>(shape), transform, point, tolerance);
   }
@@ -211,12 +248,12 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
     for (int child = 0; child < compound.getNumChildShapes(); ++child) {
       const std::optional<Eigen::Vector3d> push =
           penetration_push(*compound.getChildShape(child), transform * compound.getChildTransform(child), point,
-                           tolerance, thickness);
+                           surface_normal, tolerance, thickness);
       if (push && (!deepest || push->squaredNorm() > deepest->squaredNorm())) deepest = push;
     }
     return deepest;
   }
-  if (shape.isConvex()) return convex_push(static_cast<const btConvexShape&>(shape), transform, point);
+  if (shape.isConvex()) return convex_push(static_cast<const btConvexShape&>(shape), transform, point, surface_normal);
   if (shape.isConcave()) {
     return concave_push(static_cast<const btConcaveShape&>(shape), transform, point, tolerance, thickness);
   }

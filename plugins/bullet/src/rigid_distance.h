@@ -13,13 +13,17 @@ namespace cubespring::bullet {
 
 /// The move [m] from `point` to the nearest point of the shape's surface when the point is inside
 /// the shape or within `tolerance` of its surface from outside (the move is then zero or points
-/// outward); nothing when it is clear of the shape. Convex shapes, compounds of them, static
+/// outward); nothing when it is clear of the shape. For flat-faced shapes (boxes, cylinders,
+/// hulls) the face is the one the tissue presses on, found by the tissue's outward unit normal
+/// `surface_normal` at the point (zero: unknown, then the nearest face); the move is the shortest
+/// out through that face (docs/bullet-plugin.md, section 2.2). Convex shapes, compounds of them, static
 /// planes and concave triangle meshes (one-sided: inside means behind the nearest triangle, less
 /// than `thickness` deep). Spheres, boxes, capsules, cylinders and convex polyhedra (hulls) are
 /// tested exactly in their own frame; every other convex shape (cones, multi-spheres, scaled or
 /// user shapes) against the hull of its support points (hull_planes.h).
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
-                                                const Eigen::Vector3d& point, double tolerance, double thickness);
+                                                const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
+                                                double tolerance, double thickness);
 
 /// A convex part of a rigid shape reaching through a surface triangle from outside: the point of
 /// the shape deepest behind the triangle's plane lies over the triangle. Vertex tests alone would
