@@ -2,8 +2,7 @@
 // SPDX-License-Identifier: MIT
 // Internal forces of the cube lattice, in passes over flat arrays (docs/model-baudet2007.md,
 // docs/data-layout.md):
-//   1. springs: current vector, length, 1/length, length rate and the spring's own tension, in
-//               tiles whose square roots and divisions run two springs per SIMD instruction;
+//   1. springs: current vector, length, 1/length, length rate and the spring's own tension;
 //   2. cells:   mean edge strains -> correction tension per axis (section 3); signed volume from
 //               the body diagonals -> crushed-cell flag (section 5); twist forces (exact bending);
 //   3. crushed cells: inversion recovery;
@@ -30,48 +29,27 @@ namespace {
 // Springs shorter than this fraction of their rest length have no direction and give no force.
 constexpr double kDegenerateLengthFraction = 1e-12;
 
-// Springs per tile of pass 1: the tile's gathers fill flat arrays, then its square roots and
-// divisions run over them as whole arrays, which Eigen vectorises (two doubles per SSE2
-// instruction). Short enough that the next tile's gathers overlap the divider's work.
-constexpr int kTileSprings = 64;
-
-using ArrayMap = Eigen::Map<Eigen::ArrayXd>;
-using ConstArrayMap = Eigen::Map<const Eigen::ArrayXd>;
-
 // Pass 1 over springs [begin, end).
 template <bool kWithRate>
 void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int begin, int end,
                      ForceWorkspace& ws) {
-  constexpr double kDegenerateSq = kDegenerateLengthFraction * kDegenerateLengthFraction;
-  for (int tile = begin; tile < end; tile += kTileSprings) {
-    const int count = std::min(kTileSprings, end - tile);
-    bool degenerate = false;
-    for (int s = tile; s < tile + count; ++s) {
-      const int i = model.spring_nodes[s][0];
-      const int j = model.spring_nodes[s][1];
-      const Eigen::Vector3d d = x.col(j) - x.col(i);
-      ws.spring_vector.col(s) = d;
-      const double length_sq = d.squaredNorm();
-      ws.spring_length[s] = length_sq;  // the square root follows for the whole tile
-      const double rest = model.spring_rest_length[s];
-      degenerate |= length_sq <= kDegenerateSq * rest * rest;
-      if constexpr (kWithRate) ws.spring_rate[s] = (v.col(j) - v.col(i)).dot(d);  // times 1/length below
-    }
-    ArrayMap length(ws.spring_length.data() + tile, count);
-    ArrayMap inverse(ws.spring_inverse_length.data() + tile, count);
-    ArrayMap own(ws.spring_own_tension.data() + tile, count);
-    const ConstArrayMap rest(model.spring_rest_length.data() + tile, count);
-    length = length.sqrt();
-    inverse = length.inverse();
-    if (degenerate) {
-      for (int k = 0; k < count; ++k) inverse[k] = length[k] > kDegenerateLengthFraction * rest[k] ? inverse[k] : 0.0;
-    }
-    own = ConstArrayMap(model.spring_stiffness.data() + tile, count) * (length - rest);
+  for (int s = begin; s < end; ++s) {
+    const int i = model.spring_nodes[s][0];
+    const int j = model.spring_nodes[s][1];
+    const Eigen::Vector3d d = x.col(j) - x.col(i);
+    ws.spring_vector.col(s) = d;
+    const double length = d.norm();
+    const double rest = model.spring_rest_length[s];
+    ws.spring_length[s] = length;
+    const double inverse = length > kDegenerateLengthFraction * rest ? 1.0 / length : 0.0;
+    ws.spring_inverse_length[s] = inverse;
+    double own = model.spring_stiffness[s] * (length - rest);
     if constexpr (kWithRate) {
-      ArrayMap rate(ws.spring_rate.data() + tile, count);
-      rate *= inverse;
-      own += ConstArrayMap(model.spring_damping.data() + tile, count) * rate;
+      const double rate = (v.col(j) - v.col(i)).dot(d) * inverse;
+      ws.spring_rate[s] = rate;
+      own += model.spring_damping[s] * rate;
     }
+    ws.spring_own_tension[s] = own;
   }
 }
 

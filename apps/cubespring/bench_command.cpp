@@ -48,40 +48,21 @@ double time_per_call(double min_seconds, Fn&& fn) {
 }
 
 // The floor: one pass of linear spring forces, f = k (l - l0) d / l, over the springs grouped by
-// their first node (whose sum stays in a register), scattered to the second node. As in the force
-// pass, the springs go in tiles: gathers into flat arrays, square roots and divisions over whole
-// arrays (two springs per SSE2 instruction), then the scatter; a scalar loop would wait on the
-// divider for every spring.
+// their first node (whose sum stays in a register), scattered to the second node.
 void bare_spring_pass(const Model& model, const Eigen::Matrix3Xd& x, Eigen::Matrix3Xd& forces) {
-  constexpr int kTile = 64;
-  Eigen::Matrix<double, 3, kTile> d;
-  Eigen::Array<double, kTile, 1> length, scale;
   forces.setZero();
-  const int num_springs = model.num_springs();
-  int i = 0;  // first node of the tile's first spring
-  for (int tile = 0; tile < num_springs; tile += kTile) {
-    const int count = std::min(kTile, num_springs - tile);
-    for (int k = 0; k < count; ++k) {
-      const auto& ends = model.spring_nodes[tile + k];
-      d.col(k) = x.col(ends[1]) - x.col(ends[0]);
-      length[k] = d.col(k).squaredNorm();
+  for (int i = 0; i < model.num_nodes(); ++i) {
+    const Eigen::Vector3d xi = x.col(i);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int s = model.node_first_spring[i]; s < model.node_first_spring[i + 1]; ++s) {
+      const int j = model.spring_nodes[s][1];
+      const Eigen::Vector3d d = x.col(j) - xi;
+      const double length = d.norm();
+      const Eigen::Vector3d f = (model.spring_stiffness[s] * (length - model.spring_rest_length[s]) / length) * d;
+      sum += f;
+      forces.col(j) -= f;
     }
-    const auto stiffness = Eigen::Map<const Eigen::ArrayXd>(model.spring_stiffness.data() + tile, count);
-    const auto rest = Eigen::Map<const Eigen::ArrayXd>(model.spring_rest_length.data() + tile, count);
-    length.head(count) = length.head(count).sqrt();
-    scale.head(count) = stiffness * (length.head(count) - rest) / length.head(count);
-    const int end = tile + count;
-    for (; model.node_first_spring[i] < end; ++i) {
-      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-      const int last = std::min(end, model.node_first_spring[i + 1]);
-      for (int s = std::max(tile, model.node_first_spring[i]); s < last; ++s) {
-        const Eigen::Vector3d f = scale[s - tile] * d.col(s - tile);
-        sum += f;
-        forces.col(model.spring_nodes[s][1]) -= f;
-      }
-      forces.col(i) += sum;
-      if (last < model.node_first_spring[i + 1]) break;  // the node goes on in the next tile
-    }
+    forces.col(i) += sum;
   }
 }
 
