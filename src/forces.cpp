@@ -97,10 +97,8 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
     if (model.has_twist) {
       std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
       for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(edges[e]);
-      auto out = ws.cell_edge_force.middleCols<kEdgesPerCell>(static_cast<Eigen::Index>(c) * kEdgesPerCell);
-      out.setZero();
-      twist_energy(edge_vectors, size.x(), model.cell_twist_stiffness[c],
-                   [&](int slot, const Eigen::Vector3d& f) { out.col(slot) += f; });
+      twist_edge_forces(edge_vectors, size.x(), model.cell_twist_stiffness[c],
+                        ws.cell_edge_force.middleCols<kEdgesPerCell>(static_cast<Eigen::Index>(c) * kEdgesPerCell));
     }
   }
   return crushed;
