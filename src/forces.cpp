@@ -2,7 +2,8 @@
 // SPDX-License-Identifier: MIT
 // Internal forces of the cube lattice, in passes over flat arrays (docs/model-baudet2007.md,
 // docs/data-layout.md):
-//   1. springs: current vector, length, 1/length, length rate and the spring's own tension;
+//   1. springs: current vector, length, 1/length, length rate and the spring's own tension, in
+//               tiles whose square roots and divisions run two springs per SIMD instruction;
 //   2. cells:   mean edge strains -> correction tension per axis (section 3); signed volume from
 //               the body diagonals -> crushed-cell flag (section 5); twist forces (exact bending);
 //   3. crushed cells: inversion recovery;
@@ -29,28 +30,73 @@ namespace {
 // Springs shorter than this fraction of their rest length have no direction and give no force.
 constexpr double kDegenerateLengthFraction = 1e-12;
 
-// Pass 1 over springs [begin, end).
+// Pass 1 for spring s alone (the tail of a block).
+template <bool kWithRate>
+inline void measure_spring(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int s,
+                           ForceWorkspace& ws) {
+  const int i = model.spring_nodes[s][0];
+  const int j = model.spring_nodes[s][1];
+  const Eigen::Vector3d d = x.col(j) - x.col(i);
+  ws.spring_vector.col(s) = d;
+  const double length = d.norm();
+  const double rest = model.spring_rest_length[s];
+  ws.spring_length[s] = length;
+  const double inverse = length > kDegenerateLengthFraction * rest ? 1.0 / length : 0.0;
+  ws.spring_inverse_length[s] = inverse;
+  double own = model.spring_stiffness[s] * (length - rest);
+  if constexpr (kWithRate) {
+    const double rate = (v.col(j) - v.col(i)).dot(d) * inverse;
+    ws.spring_rate[s] = rate;
+    own += model.spring_damping[s] * rate;
+  }
+  ws.spring_own_tension[s] = own;
+}
+
+// Springs per tile of pass 1: the tile's gathers fill a small array, then its square roots and
+// divisions run as whole arrays, two springs per SIMD instruction (Eigen's packets); one spring
+// at a time the divider is the bottleneck.
+constexpr int kTileSprings = 32;
+using Tile = Eigen::Array<double, kTileSprings, 1>;
+using TileMap = Eigen::Map<Tile>;
+using ConstTileMap = Eigen::Map<const Tile>;
+
+// Pass 1 over springs [begin, end): the same values as measure_spring, by tiles.
 template <bool kWithRate>
 void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int begin, int end,
                      ForceWorkspace& ws) {
-  for (int s = begin; s < end; ++s) {
-    const int i = model.spring_nodes[s][0];
-    const int j = model.spring_nodes[s][1];
-    const Eigen::Vector3d d = x.col(j) - x.col(i);
-    ws.spring_vector.col(s) = d;
-    const double length = d.norm();
-    const double rest = model.spring_rest_length[s];
-    ws.spring_length[s] = length;
-    const double inverse = length > kDegenerateLengthFraction * rest ? 1.0 / length : 0.0;
-    ws.spring_inverse_length[s] = inverse;
-    double own = model.spring_stiffness[s] * (length - rest);
-    if constexpr (kWithRate) {
-      const double rate = (v.col(j) - v.col(i)).dot(d) * inverse;
-      ws.spring_rate[s] = rate;
-      own += model.spring_damping[s] * rate;
+  constexpr double kDegenerateSq = kDegenerateLengthFraction * kDegenerateLengthFraction;
+  int tile = begin;
+  for (; tile + kTileSprings <= end; tile += kTileSprings) {
+    Tile length_sq;
+    bool degenerate = false;
+    for (int k = 0; k < kTileSprings; ++k) {
+      const int s = tile + k;
+      const int i = model.spring_nodes[s][0];
+      const int j = model.spring_nodes[s][1];
+      const Eigen::Vector3d d = x.col(j) - x.col(i);
+      ws.spring_vector.col(s) = d;
+      length_sq[k] = d.squaredNorm();
+      const double rest = model.spring_rest_length[s];
+      degenerate |= length_sq[k] <= kDegenerateSq * rest * rest;
+      if constexpr (kWithRate) ws.spring_rate[s] = (v.col(j) - v.col(i)).dot(d);  // times 1/length below
     }
-    ws.spring_own_tension[s] = own;
+    if (degenerate) {  // rare: the spring-by-spring path handles the zero lengths
+      for (int s = tile; s < tile + kTileSprings; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
+      continue;
+    }
+    const Tile length = length_sq.sqrt();
+    const Tile inverse = length.inverse();
+    TileMap(ws.spring_length.data() + tile) = length;
+    TileMap(ws.spring_inverse_length.data() + tile) = inverse;
+    Tile own = ConstTileMap(model.spring_stiffness.data() + tile) * (length - ConstTileMap(model.spring_rest_length.data() + tile));
+    if constexpr (kWithRate) {
+      const Tile rate = TileMap(ws.spring_rate.data() + tile) * inverse;
+      TileMap(ws.spring_rate.data() + tile) = rate;
+      own += ConstTileMap(model.spring_damping.data() + tile) * rate;
+    }
+    TileMap(ws.spring_own_tension.data() + tile) = own;
   }
+  for (int s = tile; s < end; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
 }
 
 // Pass 2 over cells [begin, end). Correction tension T_a = V0 (D (eps + beta d(eps)/dt))_a / (4 a0)
