@@ -252,7 +252,6 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
   const int num_cells = model.num_cells();
   const bool with_rate = options.damping && model.has_stiffness_damping;
   [[maybe_unused]] const int threads = std::max(1, std::min(options.threads, blocks));
-  int crushed = 0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
 #pragma omp for schedule(static)
@@ -275,10 +274,12 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
       ws.block_crushed[b] = cell_pass(model, with_rate, static_cast<int>(cells * b / blocks),
                                       static_cast<int>(cells * (b + 1) / blocks), ws);
     }
+    // every thread finds the same count, so all or none enter the single (and its barrier)
+    int crushed = 0;
+    for (int b = 0; b < blocks; ++b) crushed += ws.block_crushed[b];
+    if (crushed > 0) {
 #pragma omp single
-    {
-      for (int b = 0; b < blocks; ++b) crushed += ws.block_crushed[b];
-      if (crushed > 0) apply_inversion_forces(model, state.positions, ws, forces);
+      apply_inversion_forces(model, state.positions, ws, forces);
     }
 #pragma omp for schedule(static)
     for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = scatter_block<kWithTwist>(model, b, ws, forces, finish);
