@@ -161,16 +161,21 @@ inline double spring_tension(const Model& model, const ForceWorkspace& ws, int s
 }
 
 // Force on spring_nodes[s][0]; the other end gets its negative. The twist term adds non-central
-// but balanced forces on the same two ends.
+// but balanced forces on the same two ends; it is summed in the same walk over the spring's cells
+// as their correction tension.
 template <bool kWithTwist>
 inline Eigen::Vector3d spring_force(const Model& model, const ForceWorkspace& ws, int s) {
-  Eigen::Vector3d force = (spring_tension(model, ws, s) * ws.spring_inverse_length[s]) * ws.spring_vector.col(s);
-  if constexpr (kWithTwist) {
+  if constexpr (!kWithTwist) {
+    return (spring_tension(model, ws, s) * ws.spring_inverse_length[s]) * ws.spring_vector.col(s);
+  } else {
+    double tension = ws.spring_own_tension[s];
+    Eigen::Vector3d twist = Eigen::Vector3d::Zero();
     for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
-      force += ws.cell_edge_force.col(model.spring_cell_edge[e]);
+      tension += ws.cell_tension.data()[model.spring_cell_tension[e]];
+      twist += ws.cell_edge_force.col(model.spring_cell_edge[e]);
     }
+    return (tension * ws.spring_inverse_length[s]) * ws.spring_vector.col(s) + twist;
   }
-  return force;
 }
 
 // Pass 4 over block b: scatters its springs' forces; each node past the previous block's halo is
