@@ -236,8 +236,9 @@ void apply_inversion_forces(const Model& model, const Eigen::Matrix3Xd& x, const
 
 void prepare(const Model& model, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
   const int blocks = num_force_blocks(model);
+  const Eigen::Index twist_columns = model.has_twist ? static_cast<Eigen::Index>(model.num_cells()) * kEdgesPerCell : 0;
   if (ws.spring_vector.cols() != model.num_springs() || ws.cell_tension.cols() != model.num_cells() ||
-      static_cast<int>(ws.block_halo.size()) != blocks) {
+      ws.cell_edge_force.cols() != twist_columns || static_cast<int>(ws.block_halo.size()) != blocks) {
     ws.resize(model);
   }
   for (int b = 0; b < blocks; ++b) {
