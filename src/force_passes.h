@@ -1,7 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Passes of forces.cpp shared with the stiffness assembly.
+// Passes of forces.cpp shared with the stiffness assembly and the explicit integrators.
 #pragma once
+
+#include <cmath>
 
 #include <Eigen/Core>
 
@@ -11,5 +13,26 @@ namespace cubespring {
 
 /// Fills ws.spring_length, ws.cell_tension and ws.spring_tension (no damping) at positions x.
 void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorkspace& ws);
+
+/// One kick-drift of every node, v' = v + kick M^-1 f, x' = x + drift v', from `from` into `to`
+/// (a different State): kick and drift [s].
+struct KickDrift {
+  double kick = 0.0;
+  double drift = 0.0;
+  const State* from = nullptr;
+  State* to = nullptr;
+};
+
+/// compute_forces() followed by the kick-drift, each node moved as soon as its force is complete
+/// (while it is still in cache). Returns the largest squared speed [m^2/s^2], NaN if a velocity
+/// is not finite. The states and forces are the same as from compute_forces() and a separate sweep.
+double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads,
+                               const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces,
+                               const KickDrift& kick);
+
+/// The speed bookkeeping of the kick-drift: the larger squared speed, NaN once any is NaN.
+inline double faster(double speed_sq, double fastest_sq) {
+  return speed_sq > fastest_sq || std::isnan(speed_sq) ? speed_sq : fastest_sq;
+}
 
 }  // namespace cubespring

@@ -1,107 +1,158 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Internal forces of the cube lattice, in passes over flat arrays (docs/model-baudet2007.md):
-//   1. springs: current vector, length and (with stiffness damping) length rate;
+// Internal forces of the cube lattice, in passes over flat arrays (docs/model-baudet2007.md,
+// docs/data-layout.md):
+//   1. springs: current vector, length, 1/length, length rate and the spring's own tension, in
+//               tiles whose square roots and divisions run two springs per SIMD instruction;
 //   2. cells:   mean edge strains -> correction tension per axis (section 3); signed volume from
-//               the body diagonals -> crushed-cell flag (section 5);
-//   3. springs: total tension (spring + correction + damping) -> force on both ends;
-//   4. crushed cells: inversion recovery; then mass-proportional damping and loads.
-// On one thread pass 3 walks the springs grouped by their first node (they are sorted so), keeping
-// that node's sum in a register and scattering to the second node. On several threads it stores
-// each spring's force and gathers per node, adding the same terms in the same order (second-node
-// terms first, then the first-node sum), so results are bit-identical whatever the thread count.
+//               the body diagonals -> crushed-cell flag (section 5); twist forces (exact bending);
+//   3. crushed cells: inversion recovery;
+//   4. springs: total tension -> force on both ends, walking the springs grouped by their first
+//               node (they are sorted so): that node's sum stays in registers, the second node
+//               gets one scattered write. A node whose force is then complete gets its damping
+//               and loads at once, and the explicit step moves it (still in cache).
+// The springs are cut into blocks of consecutive first nodes (force_blocks.h). A block's springs
+// that end in the next block write to a halo of their own, added once every block is done; the
+// blocks depend on the body alone, so the sums, and the results, do not depend on the thread count.
 #include "cubespring/forces.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "cell_geometry.h"
+#include "force_blocks.h"
 #include "force_passes.h"
 #include "twist.h"
 
 namespace cubespring {
 namespace {
 
-// Below this many springs per thread a parallel region costs more than it saves.
-constexpr int kMinSpringsPerThread = 2048;
-
 // Springs shorter than this fraction of their rest length have no direction and give no force.
 constexpr double kDegenerateLengthFraction = 1e-12;
 
+// Pass 1 for spring s alone (the tail of a block).
 template <bool kWithRate>
-void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v,
-                     [[maybe_unused]] int threads, ForceWorkspace& ws) {
-  const int num_springs = model.num_springs();
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (int s = 0; s < num_springs; ++s) {
-    const int i = model.spring_nodes[s][0];
-    const int j = model.spring_nodes[s][1];
-    const Eigen::Vector3d d = x.col(j) - x.col(i);
-    const double length = d.norm();
-    ws.spring_vector.col(s) = d;
-    ws.spring_length[s] = length;
-    if constexpr (kWithRate) ws.spring_rate[s] = length > 0.0 ? (v.col(j) - v.col(i)).dot(d) / length : 0.0;
+inline void measure_spring(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int s,
+                           ForceWorkspace& ws) {
+  const int i = model.spring_nodes[s][0];
+  const int j = model.spring_nodes[s][1];
+  const Eigen::Vector3d d = x.col(j) - x.col(i);
+  ws.spring_vector.col(s) = d;
+  const double length = d.norm();
+  const double rest = model.spring_rest_length[s];
+  ws.spring_length[s] = length;
+  const double inverse = length > kDegenerateLengthFraction * rest ? 1.0 / length : 0.0;
+  ws.spring_inverse_length[s] = inverse;
+  double own = model.spring_stiffness[s] * (length - rest);
+  if constexpr (kWithRate) {
+    const double rate = (v.col(j) - v.col(i)).dot(d) * inverse;
+    ws.spring_rate[s] = rate;
+    own += model.spring_damping[s] * rate;
   }
+  ws.spring_own_tension[s] = own;
 }
 
-void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd* v, int threads,
+// Springs per tile of pass 1: the tile's gathers fill a small array, then its square roots and
+// divisions run as whole arrays, two springs per SIMD instruction (Eigen's packets); one spring
+// at a time the divider is the bottleneck.
+constexpr int kTileSprings = 32;
+using Tile = Eigen::Array<double, kTileSprings, 1>;
+using TileMap = Eigen::Map<Tile>;
+using ConstTileMap = Eigen::Map<const Tile>;
+
+// Pass 1 over springs [begin, end): the same values as measure_spring, by tiles.
+template <bool kWithRate>
+void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int begin, int end,
                      ForceWorkspace& ws) {
-  if (v != nullptr) {
-    measure_springs<true>(model, x, *v, threads, ws);
-  } else {
-    measure_springs<false>(model, x, x, threads, ws);
+  constexpr double kDegenerateSq = kDegenerateLengthFraction * kDegenerateLengthFraction;
+  int tile = begin;
+  for (; tile + kTileSprings <= end; tile += kTileSprings) {
+    Tile length_sq;
+    bool degenerate = false;
+    for (int k = 0; k < kTileSprings; ++k) {
+      const int s = tile + k;
+      const int i = model.spring_nodes[s][0];
+      const int j = model.spring_nodes[s][1];
+      const Eigen::Vector3d d = x.col(j) - x.col(i);
+      ws.spring_vector.col(s) = d;
+      length_sq[k] = d.squaredNorm();
+      const double rest = model.spring_rest_length[s];
+      degenerate |= length_sq[k] <= kDegenerateSq * rest * rest;
+      if constexpr (kWithRate) ws.spring_rate[s] = (v.col(j) - v.col(i)).dot(d);  // times 1/length below
+    }
+    if (degenerate) {  // rare: the spring-by-spring path handles the zero lengths
+      for (int s = tile; s < tile + kTileSprings; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
+      continue;
+    }
+    const Tile length = length_sq.sqrt();
+    const Tile inverse = length.inverse();
+    TileMap(ws.spring_length.data() + tile) = length;
+    TileMap(ws.spring_inverse_length.data() + tile) = inverse;
+    Tile own = ConstTileMap(model.spring_stiffness.data() + tile) * (length - ConstTileMap(model.spring_rest_length.data() + tile));
+    if constexpr (kWithRate) {
+      const Tile rate = TileMap(ws.spring_rate.data() + tile) * inverse;
+      TileMap(ws.spring_rate.data() + tile) = rate;
+      own += ConstTileMap(model.spring_damping.data() + tile) * rate;
+    }
+    TileMap(ws.spring_own_tension.data() + tile) = own;
   }
+  for (int s = tile; s < end; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
 }
 
-// Correction tension T_a = V0 (D (eps + beta d(eps)/dt))_a / (4 a0) on each a-edge of a cell, and
-// the crushed flag from the signed volume of the mean edge vectors, which the diagonals give:
-// sum_k s_a(k) x_k = sum over diagonals c -> 7-c of s_a(7-c) (x_{7-c} - x_c).
-void cell_pass(const Model& model, bool with_rate, [[maybe_unused]] int threads, ForceWorkspace& ws) {
-  const int num_cells = model.num_cells();
+// Pass 2 over cells [begin, end). Correction tension T_a = V0 (D (eps + beta d(eps)/dt))_a / (4 a0)
+// on each a-edge of a cell, and the crushed flag from the signed volume of the mean edge vectors,
+// which the diagonals give: sum_k s_a(k) x_k = sum over diagonals c -> 7-c of s_a(7-c) (x_{7-c} - x_c).
+// Returns the number of crushed cells.
+int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws) {
   const Eigen::Vector3d& size = model.cell_size;
-  const double volume = size.prod();
-  const double crushed_volume = kCrushedVolumeFraction * volume;
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-  for (int c = 0; c < num_cells; ++c) {
-    Eigen::Vector3d strain;
-    Eigen::Vector3d strain_rate = Eigen::Vector3d::Zero();
+  const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * size.array()).inverse();
+  const Eigen::Array3d tension_per_stress = size.prod() * inverse_edge_sum;
+  const double crushed_volume = kCrushedVolumeFraction * size.prod();
+  int crushed = 0;
+  for (int c = begin; c < end; ++c) {
+    const std::array<int, kEdgesPerCell>& edges = model.cell_edges[c];
+    Eigen::Array3d length_sum, rate_sum = Eigen::Array3d::Zero();
     for (int axis = 0; axis < 3; ++axis) {
-      double length_sum = 0.0;
-      for (int e = 0; e < kEdgesPerAxis; ++e) length_sum += ws.spring_length[model.cell_edges[c][axis * kEdgesPerAxis + e]];
-      strain[axis] = length_sum / (kEdgesPerAxis * size[axis]) - 1.0;
-      if (with_rate) {
-        double rate_sum = 0.0;
-        for (int e = 0; e < kEdgesPerAxis; ++e) rate_sum += ws.spring_rate[model.cell_edges[c][axis * kEdgesPerAxis + e]];
-        strain_rate[axis] = rate_sum / (kEdgesPerAxis * size[axis]);
-      }
+      const int* e = edges.data() + axis * kEdgesPerAxis;
+      length_sum[axis] = (ws.spring_length[e[0]] + ws.spring_length[e[1]]) + (ws.spring_length[e[2]] + ws.spring_length[e[3]]);
+      if (with_rate) rate_sum[axis] = (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
     }
-    const double beta = with_rate ? model.materials[model.cell_material[c]].stiffness_damping : 0.0;
-    const Eigen::Vector3d stress = model.cell_correction[c] * (strain + beta * strain_rate);
-    ws.cell_tension.col(c) = volume * stress.cwiseQuotient(kEdgesPerAxis * size);
+    Eigen::Vector3d strain = (length_sum * inverse_edge_sum - 1.0).matrix();
+    if (with_rate) {
+      const double beta = model.materials[model.cell_material[c]].stiffness_damping;
+      strain += (beta * (rate_sum * inverse_edge_sum)).matrix();
+    }
+    const Eigen::Vector3d stress = model.cell_correction[c] * strain;
+    ws.cell_tension.col(c) = (tension_per_stress * stress.array()).matrix();
 
-    std::array<Eigen::Vector3d, 3> edge;
-    edge.fill(Eigen::Vector3d::Zero());
-    for (int corner = 0; corner < 4; ++corner) {
-      const Eigen::Vector3d diagonal = ws.spring_vector.col(model.cell_diagonals[c][corner]);
-      for (int axis = 0; axis < 3; ++axis) edge[axis] += corner_side(7 - corner, axis) * diagonal;
-    }
+    // 4 x each mean edge vector, from the diagonals (corner 7 - k minus corner k)
+    const std::array<int, 4>& diagonals = model.cell_diagonals[c];
+    const Eigen::Vector3d d0 = ws.spring_vector.col(diagonals[0]);
+    const Eigen::Vector3d d1 = ws.spring_vector.col(diagonals[1]);
+    const Eigen::Vector3d d2 = ws.spring_vector.col(diagonals[2]);
+    const Eigen::Vector3d d3 = ws.spring_vector.col(diagonals[3]);
+    // s_a(7 - k) for k = 0..3: x: + - + -, y: + + - -, z: + + + +
+    const Eigen::Vector3d edge_x = (d0 - d1) + (d2 - d3);
+    const Eigen::Vector3d edge_y = (d0 + d1) - (d2 + d3);
+    const Eigen::Vector3d edge_z = (d0 + d1) + (d2 + d3);
     // the 1/4 of each mean edge vector gives 1/64 on the volume
-    ws.cell_crushed[c] = edge[0].dot(edge[1].cross(edge[2])) < 64.0 * crushed_volume;
+    const bool is_crushed = edge_x.dot(edge_y.cross(edge_z)) < 64.0 * crushed_volume;
+    ws.cell_crushed[c] = is_crushed;
+    crushed += is_crushed;
 
     if (model.has_twist) {
-      std::array<Eigen::Vector3d, kEdgesPerCell> edges;
-      for (int e = 0; e < kEdgesPerCell; ++e) edges[e] = ws.spring_vector.col(model.cell_edges[c][e]);
-      auto out = ws.cell_edge_force.middleCols<kEdgesPerCell>(static_cast<Eigen::Index>(c) * kEdgesPerCell);
-      out.setZero();
-      twist_energy(edges, size.x(), model.cell_twist_stiffness[c],
-                   [&](int slot, const Eigen::Vector3d& f) { out.col(slot) += f; });
+      std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
+      for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(edges[e]);
+      twist_edge_forces(edge_vectors, size.x(), model.cell_twist_stiffness[c],
+                        ws.cell_edge_force.middleCols<kEdgesPerCell>(static_cast<Eigen::Index>(c) * kEdgesPerCell));
     }
   }
+  return crushed;
 }
 
-inline double spring_tension(const Model& model, const ForceWorkspace& ws, bool with_rate, int s) {
-  double tension = model.spring_stiffness[s] * (ws.spring_length[s] - model.spring_rest_length[s]);
-  if (with_rate) tension += model.spring_damping[s] * ws.spring_rate[s];
+// Total tension of spring s: its own (pass 1) plus the correction of each cell it is an edge of.
+inline double spring_tension(const Model& model, const ForceWorkspace& ws, int s) {
+  double tension = ws.spring_own_tension[s];
   const double* cell_tension = ws.cell_tension.data();
   for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
     tension += cell_tension[model.spring_cell_tension[e]];
@@ -110,55 +161,62 @@ inline double spring_tension(const Model& model, const ForceWorkspace& ws, bool 
 }
 
 // Force on spring_nodes[s][0]; the other end gets its negative. The twist term adds non-central
-// but balanced forces on the same two ends.
-Eigen::Vector3d spring_force(const Model& model, const ForceWorkspace& ws, double tension, int s) {
-  const double length = ws.spring_length[s];
-  Eigen::Vector3d force = length > kDegenerateLengthFraction * model.spring_rest_length[s]
-                              ? Eigen::Vector3d((tension / length) * ws.spring_vector.col(s))
-                              : Eigen::Vector3d::Zero();
-  if (model.has_twist) {
+// but balanced forces on the same two ends; it is summed in the same walk over the spring's cells
+// as their correction tension.
+template <bool kWithTwist>
+inline Eigen::Vector3d spring_force(const Model& model, const ForceWorkspace& ws, int s) {
+  if constexpr (!kWithTwist) {
+    return (spring_tension(model, ws, s) * ws.spring_inverse_length[s]) * ws.spring_vector.col(s);
+  } else {
+    double tension = ws.spring_own_tension[s];
+    Eigen::Vector3d twist = Eigen::Vector3d::Zero();
     for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
-      force += ws.cell_edge_force.col(model.spring_cell_edge[e]);
+      tension += ws.cell_tension.data()[model.spring_cell_tension[e]];
+      twist += ws.cell_edge_force.col(model.spring_cell_edge[e]);
     }
+    return (tension * ws.spring_inverse_length[s]) * ws.spring_vector.col(s) + twist;
   }
-  return force;
 }
 
-void apply_spring_forces(const Model& model, bool with_rate, int threads, ForceWorkspace& ws,
-                         Eigen::Matrix3Xd& forces) {
-  const int num_nodes = model.num_nodes();
-  if (threads <= 1) {
-    for (int n = 0; n < num_nodes; ++n) {
-      Eigen::Vector3d first_node_sum = Eigen::Vector3d::Zero();
-      for (int s = model.node_first_spring[n]; s < model.node_first_spring[n + 1]; ++s) {
-        const Eigen::Vector3d f = spring_force(model, ws, spring_tension(model, ws, with_rate, s), s);
-        first_node_sum += f;
-        forces.col(model.spring_nodes[s][1]) -= f;
-      }
-      forces.col(n) += first_node_sum;
-    }
-    return;
-  }
-  const int num_springs = model.num_springs();
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int s = 0; s < num_springs; ++s) {
-    ws.spring_force.col(s) = spring_force(model, ws, spring_tension(model, ws, with_rate, s), s);
-  }
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int n = 0; n < num_nodes; ++n) {
-    // second-node terms come first in spring order, then the first-node sum, as in the scatter
-    Eigen::Vector3d second_node_sum = forces.col(n);
+// Pass 4 over block b: scatters its springs' forces; each node past the previous block's halo is
+// complete once its own springs are done, and goes to finish(n), which returns a squared speed.
+template <bool kWithTwist, typename Finish>
+double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const Finish& finish) {
+  const int begin = force_block_begin(model, b);
+  const int end = force_block_end(model, b);
+  const int settled = b > 0 ? force_block_reach(model, b - 1) : begin;
+  Eigen::Matrix3Xd& halo = ws.block_halo[b];
+  double fastest_sq = 0.0;
+  for (int n = begin; n < end; ++n) {
     Eigen::Vector3d first_node_sum = Eigen::Vector3d::Zero();
-    for (int e = model.node_spring_offset[n]; e < model.node_spring_offset[n + 1]; ++e) {
-      const int entry = model.node_spring[e];
-      if (entry & 1) {
-        second_node_sum -= ws.spring_force.col(entry >> 1);
+    for (int s = model.node_first_spring[n]; s < model.node_first_spring[n + 1]; ++s) {
+      const Eigen::Vector3d f = spring_force<kWithTwist>(model, ws, s);
+      first_node_sum += f;
+      const int j = model.spring_nodes[s][1];
+      if (j < end) {
+        forces.col(j) -= f;
       } else {
-        first_node_sum += ws.spring_force.col(entry >> 1);
+        halo.col(j - end) -= f;
       }
     }
-    forces.col(n) = second_node_sum + first_node_sum;
+    forces.col(n) += first_node_sum;
+    if (n >= settled) fastest_sq = faster(finish(n), fastest_sq);
   }
+  return fastest_sq;
+}
+
+// The nodes of block b that the previous block's springs reach: their halo, then finish(n).
+template <typename Finish>
+double settle_halo(const Model& model, int b, const ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const Finish& finish) {
+  if (b == 0) return 0.0;
+  const int begin = force_block_begin(model, b);
+  const Eigen::Matrix3Xd& halo = ws.block_halo[b - 1];
+  double fastest_sq = 0.0;
+  for (int n = begin; n < force_block_reach(model, b - 1); ++n) {
+    forces.col(n) += halo.col(n - begin);
+    fastest_sq = faster(finish(n), fastest_sq);
+  }
+  return fastest_sq;
 }
 
 void apply_inversion_forces(const Model& model, const Eigen::Matrix3Xd& x, const ForceWorkspace& ws,
@@ -176,50 +234,142 @@ void apply_inversion_forces(const Model& model, const Eigen::Matrix3Xd& x, const
   }
 }
 
+void prepare(const Model& model, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
+  const int blocks = num_force_blocks(model);
+  const Eigen::Index twist_columns = model.has_twist ? static_cast<Eigen::Index>(model.num_cells()) * kEdgesPerCell : 0;
+  if (ws.spring_vector.cols() != model.num_springs() || ws.cell_tension.cols() != model.num_cells() ||
+      ws.cell_edge_force.cols() != twist_columns || static_cast<int>(ws.block_halo.size()) != blocks) {
+    ws.resize(model);
+  }
+  for (int b = 0; b < blocks; ++b) {
+    const Eigen::Index halo = std::max(0, force_block_reach(model, b) - force_block_end(model, b));
+    if (ws.block_halo[b].cols() != halo) ws.block_halo[b].resize(3, halo);
+  }
+  if (forces.cols() != model.num_nodes()) forces.resize(3, model.num_nodes());
+}
+
+// The passes in one parallel region; finish(n) is called once for every node, after its force.
+// Returns the largest value finish gave (NaN wins).
+template <bool kWithTwist, typename Finish>
+double run_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
+                   Eigen::Matrix3Xd& forces, const Finish& finish) {
+  prepare(model, ws, forces);
+  const int blocks = num_force_blocks(model);
+  const int num_cells = model.num_cells();
+  const bool with_rate = options.damping && model.has_stiffness_damping;
+  [[maybe_unused]] const int threads = std::max(1, std::min(options.threads, blocks));
+#pragma omp parallel num_threads(threads) if (threads > 1)
+  {
+#pragma omp for schedule(static)
+    for (int b = 0; b < blocks; ++b) {
+      const int begin = force_block_begin(model, b);
+      const int end = force_block_end(model, b);
+      forces.middleCols(begin, end - begin).setZero();
+      ws.block_halo[b].setZero();
+      const int first = model.node_first_spring[begin];
+      const int last = model.node_first_spring[end];
+      if (with_rate) {
+        measure_springs<true>(model, state.positions, state.velocities, first, last, ws);
+      } else {
+        measure_springs<false>(model, state.positions, state.positions, first, last, ws);
+      }
+    }
+#pragma omp for schedule(static)
+    for (int b = 0; b < blocks; ++b) {
+      const long long cells = num_cells;
+      ws.block_crushed[b] = cell_pass(model, with_rate, static_cast<int>(cells * b / blocks),
+                                      static_cast<int>(cells * (b + 1) / blocks), ws);
+    }
+    // every thread finds the same count, so all or none enter the single (and its barrier)
+    int crushed = 0;
+    for (int b = 0; b < blocks; ++b) crushed += ws.block_crushed[b];
+    if (crushed > 0) {
+#pragma omp single
+      apply_inversion_forces(model, state.positions, ws, forces);
+    }
+#pragma omp for schedule(static)
+    for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = scatter_block<kWithTwist>(model, b, ws, forces, finish);
+#pragma omp for schedule(static)
+    for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = faster(settle_halo(model, b, ws, forces, finish), ws.block_fastest[b]);
+  }
+  double fastest_sq = 0.0;
+  for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);
+  return fastest_sq;
+}
+
+// Damping and loads of node n, the last terms of its force.
+struct NodeLoads {
+  const Model& model;
+  const State& state;
+  const Loads& loads;
+  bool with_mass_damping, with_gravity, with_nodal;
+
+  NodeLoads(const Model& m, const State& s, const Loads& l, const ForceOptions& options)
+      : model(m), state(s), loads(l), with_mass_damping(options.damping && m.has_mass_damping),
+        with_gravity(!l.gravity.isZero()), with_nodal(l.nodal_forces.cols() == m.num_nodes()) {}
+
+  void add(int n, Eigen::Matrix3Xd& forces) const {
+    if (with_mass_damping) forces.col(n) -= model.mass_damping[n] * state.velocities.col(n);
+    if (with_gravity) forces.col(n) += model.mass[n] * loads.gravity;
+    if (with_nodal) forces.col(n) += loads.nodal_forces.col(n);
+  }
+};
+
+template <typename Finish>
+double force_sweep(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
+                   Eigen::Matrix3Xd& forces, const Finish& finish) {
+  return model.has_twist ? run_passes<true>(model, state, options, ws, forces, finish)
+                         : run_passes<false>(model, state, options, ws, forces, finish);
+}
+
 }  // namespace
 
 void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorkspace& ws) {
   ws.resize(model);
-  measure_springs(model, x, nullptr, 1, ws);
-  cell_pass(model, false, 1, ws);
-  for (int s = 0; s < model.num_springs(); ++s) ws.spring_tension[s] = spring_tension(model, ws, false, s);
+  measure_springs<false>(model, x, x, 0, model.num_springs(), ws);
+  (void)cell_pass(model, false, 0, model.num_cells(), ws);
+  for (int s = 0; s < model.num_springs(); ++s) ws.spring_tension[s] = spring_tension(model, ws, s);
 }
 
 void ForceWorkspace::resize(const Model& model) {
   const auto num_springs = static_cast<std::size_t>(model.num_springs());
   spring_vector.resize(3, model.num_springs());
   spring_length.resize(num_springs);
+  spring_inverse_length.resize(num_springs);
   spring_rate.resize(num_springs);
+  spring_own_tension.resize(num_springs);
   spring_tension.resize(num_springs);
   cell_tension.resize(3, model.num_cells());
   cell_crushed.resize(model.num_cells());
-  spring_force.resize(3, model.num_springs());
   cell_edge_force.resize(3, model.has_twist ? static_cast<Eigen::Index>(model.num_cells()) * kEdgesPerCell : 0);
+  const auto blocks = static_cast<std::size_t>(num_force_blocks(model));
+  block_halo.resize(blocks);
+  block_crushed.resize(blocks);
+  block_fastest.resize(blocks);
 }
 
 void compute_forces(const Model& model, const State& state, const Loads& loads,
                     const ForceOptions& options, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
-  if (ws.spring_vector.cols() != model.num_springs() || ws.cell_tension.cols() != model.num_cells()) ws.resize(model);
-  const int threads = std::max(1, std::min(options.threads, model.num_springs() / kMinSpringsPerThread));
-  const bool with_rate = options.damping && model.has_stiffness_damping;
-  const int num_nodes = model.num_nodes();
-  if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
-  forces.setZero();
-  measure_springs(model, state.positions, with_rate ? &state.velocities : nullptr, threads, ws);
-  cell_pass(model, with_rate, threads, ws);
-  apply_spring_forces(model, with_rate, threads, ws, forces);
-  apply_inversion_forces(model, state.positions, ws, forces);
+  const NodeLoads node_loads(model, state, loads, options);
+  (void)force_sweep(model, state, options, ws, forces, [&](int n) {
+    node_loads.add(n, forces);
+    return 0.0;
+  });
+}
 
-  // mass-proportional damping and external loads
-  const bool with_mass_damping = options.damping && model.has_mass_damping;
-  const bool with_gravity = !loads.gravity.isZero();
-  const bool with_nodal = loads.nodal_forces.cols() == num_nodes;
-  if (!with_mass_damping && !with_gravity && !with_nodal) return;
-  for (int n = 0; n < num_nodes; ++n) {
-    if (with_mass_damping) forces.col(n) -= model.mass_damping[n] * state.velocities.col(n);
-    if (with_gravity) forces.col(n) += model.mass[n] * loads.gravity;
-    if (with_nodal) forces.col(n) += loads.nodal_forces.col(n);
-  }
+double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads,
+                               const ForceOptions& options, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
+                               const KickDrift& kick) {
+  const NodeLoads node_loads(model, state, loads, options);
+  const State& from = *kick.from;
+  State& to = *kick.to;
+  return force_sweep(model, state, options, ws, forces, [&](int n) {
+    node_loads.add(n, forces);
+    const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
+    to.velocities.col(n) = v;
+    to.positions.col(n) = from.positions.col(n) + kick.drift * v;
+    return v.squaredNorm();
+  });
 }
 
 double cell_signed_volume(const Model& model, const Eigen::Matrix3Xd& positions, int cell) {

@@ -8,6 +8,8 @@
 
 #include <Eigen/IterativeLinearSolvers>
 
+#include "force_passes.h"
+
 namespace cubespring {
 namespace {
 
@@ -83,7 +85,8 @@ StepReport Stepper::check(const Model& model, const StepSettings& settings, doub
 }
 
 // One kick-drift sweep over the nodes: v' = v0 + kick M^-1 f, x' = x0 + drift v'. Returns the
-// largest squared speed, NaN if any velocity is not finite.
+// largest squared speed, NaN if any velocity is not finite. (The first kick of a step is fused
+// with the force pass: compute_forces_and_kick.)
 double kick_drift(const Model& model, const Eigen::Matrix3Xd& forces, double kick, double drift,
                   const State& from, State& to) {
   double fastest_sq = 0.0;
@@ -92,7 +95,7 @@ double kick_drift(const Model& model, const Eigen::Matrix3Xd& forces, double kic
     to.velocities.col(n) = v;
     to.positions.col(n) = from.positions.col(n) + drift * v;
     const double speed_sq = v.squaredNorm();
-    fastest_sq = speed_sq > fastest_sq || std::isnan(speed_sq) ? speed_sq : fastest_sq;
+    fastest_sq = faster(speed_sq, fastest_sq);
   }
   return fastest_sq;
 }
@@ -102,15 +105,16 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
   const double dt = settings.time_step;
   const ForceOptions options{true, settings.threads};
   if (candidate_.positions.cols() != model.num_nodes()) candidate_ = state;
-  compute_forces(model, state, loads, options, workspace_, forces_);
   double fastest_sq = 0.0;
   if (settings.integrator == Integrator::kSymplecticEuler) {
     // v += dt M^-1 f(x, v); x += dt v
-    fastest_sq = kick_drift(model, forces_, dt, dt, state, candidate_);
+    fastest_sq = compute_forces_and_kick(model, state, loads, options, workspace_, forces_,
+                                         KickDrift{dt, dt, &state, &candidate_});
   } else {
     // half kick and drift, then a half kick with the force at the new positions (its damping
     // taken at the half-step velocity)
-    kick_drift(model, forces_, 0.5 * dt, dt, state, candidate_);
+    (void)compute_forces_and_kick(model, state, loads, options, workspace_, forces_,
+                                  KickDrift{0.5 * dt, dt, &state, &candidate_});
     drive_nodes(constraints, dt, state, candidate_);
     compute_forces(model, candidate_, loads, options, workspace_, forces_);
     fastest_sq = kick_drift(model, forces_, 0.5 * dt, 0.0, candidate_, candidate_);

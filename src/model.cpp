@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cubespring/forces.h"
+#include "force_blocks.h"
 
 namespace cubespring {
 namespace {
@@ -262,6 +263,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.node_spring[fill[model.spring_nodes[s][0]]++] = 2 * s;
     model.node_spring[fill[model.spring_nodes[s][1]]++] = 2 * s + 1;
   }
+  split_force_blocks(model);
   return model;
 }
 

@@ -80,4 +80,52 @@ inline double twist_energy(const std::array<Eigen::Vector3d, kEdgesPerCell>& edg
   return energy;
 }
 
+/// The two face terms of each edge slot: faces[d][side] with the edge on that face's a (role 0)
+/// or c (role 1) pair, in the order twist_energy() adds them.
+struct EdgeTwistTerms {
+  std::array<int, 2> face;  // d * 2 + side
+  std::array<int, 2> role;
+};
+constexpr std::array<EdgeTwistTerms, kEdgesPerCell> make_edge_twist_terms() {
+  std::array<EdgeTwistTerms, kEdgesPerCell> terms{};
+  std::array<int, kEdgesPerCell> found{};
+  for (int d = 0; d < 3; ++d) {
+    for (int side = 0; side < 2; ++side) {
+      for (int t = 0; t < 2; ++t) {
+        for (int role = 0; role < 2; ++role) {
+          const TwistFace& face = kTwistFaces[d][side];
+          const int slot = role == 0 ? face.a_edges[t] : face.c_edges[t];
+          terms[slot].face[found[slot]] = d * 2 + side;
+          terms[slot].role[found[slot]] = role;
+          ++found[slot];
+        }
+      }
+    }
+  }
+  return terms;
+}
+inline constexpr std::array<EdgeTwistTerms, kEdgesPerCell> kEdgeTwistTerms = make_edge_twist_terms();
+
+/// The forces of twist_energy() written once per edge slot: out.col(slot) = force on that edge's
+/// lower corner [N]. Same terms in the same order, so the same bits, without summing in memory.
+template <typename Out>
+inline void twist_edge_forces(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges, double h, double k, Out&& out) {
+  const auto& faces = twist_faces();
+  std::array<std::array<Eigen::Vector3d, 2>, 6> face_force;  // [d * 2 + side][role]
+  for (int d = 0; d < 3; ++d) {
+    const FaceMeans lower = face_means(faces[d][0], edges);
+    const FaceMeans upper = face_means(faces[d][1], edges);
+    const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
+    for (int side = 0; side < 2; ++side) {
+      const FaceMeans& means = side == 0 ? lower : upper;
+      const double coefficient = (side == 0 ? -0.5 : 0.5) * k * h * w;
+      face_force[d * 2 + side] = {coefficient * means.c, coefficient * means.a};
+    }
+  }
+  for (int slot = 0; slot < kEdgesPerCell; ++slot) {
+    const EdgeTwistTerms& terms = kEdgeTwistTerms[slot];
+    out.col(slot) = face_force[terms.face[0]][terms.role[0]] + face_force[terms.face[1]][terms.role[1]];
+  }
+}
+
 }  // namespace cubespring

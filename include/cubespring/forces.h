@@ -29,12 +29,16 @@ struct ForceOptions {
 struct ForceWorkspace {
   Eigen::Matrix3Xd spring_vector;         ///< x of the second node minus x of the first [m]
   std::vector<double> spring_length;      ///< current length [m]
+  std::vector<double> spring_inverse_length;  ///< 1 / length, 0 for a degenerate spring [1/m]
   std::vector<double> spring_rate;        ///< d(length)/dt [m/s]
-  std::vector<double> spring_tension;     ///< total tension (spring + correction + damping) [N]
+  std::vector<double> spring_own_tension; ///< the spring's own tension and damping, no correction [N]
+  std::vector<double> spring_tension;     ///< total tension (spring + correction), filled for the stiffness [N]
   Eigen::Matrix3Xd cell_tension;          ///< correction tension on each axis' edges [N]
   std::vector<std::uint8_t> cell_crushed; ///< 1 where the inversion recovery acts
-  Eigen::Matrix3Xd spring_force;          ///< force on spring_nodes[s][0] [N] (gather pass)
   Eigen::Matrix3Xd cell_edge_force;       ///< twist force on each cell edge's lower node [N]
+  std::vector<Eigen::Matrix3Xd> block_halo;  ///< forces of each block's springs on the next block's nodes [N]
+  std::vector<int> block_crushed;         ///< crushed cells found by each block
+  std::vector<double> block_fastest;      ///< largest squared speed each block gave a node [m^2/s^2]
   void resize(const Model& model);
 };
 
