@@ -213,23 +213,4 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   return report;
 }
 
-double max_stable_time_step(const Model& model) {
-  // Gershgorin: omega_max^2 <= max_n (1/m_n) sum_m |K_nm| over the node's row at rest
-  StiffnessAssembler assembler(model);
-  SparseMatrix stiffness;
-  assembler.assemble(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0, stiffness);
-  double omega_sq = 0.0;
-  double beta = 0.0;
-  for (const Material& material : model.materials) beta = std::max(beta, material.stiffness_damping);
-  for (int row = 0; row < stiffness.rows(); ++row) {
-    double sum = 0.0;
-    for (SparseMatrix::InnerIterator it(stiffness, row); it; ++it) sum += std::abs(it.value());
-    omega_sq = std::max(omega_sq, sum / model.mass[row / 3]);
-  }
-  const double omega = std::sqrt(omega_sq);
-  // with damping ratio zeta = beta omega / 2 the limit is 2 / omega (sqrt(1 + zeta^2) - zeta)
-  const double zeta = 0.5 * beta * omega;
-  return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta);
-}
-
 }  // namespace cubespring

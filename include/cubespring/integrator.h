@@ -10,6 +10,7 @@
 #include "cubespring/constraints.h"
 #include "cubespring/forces.h"
 #include "cubespring/model.h"
+#include "cubespring/stable_time_step.h"
 #include "cubespring/state.h"
 #include "cubespring/stiffness.h"
 
@@ -79,11 +80,6 @@ class Stepper {
   std::unique_ptr<StiffnessAssembler> assembler_;  // built on the first implicit step
   SparseMatrix system_;
 };
-
-/// The largest time step [s] at which the explicit integrators stay stable for this body at rest:
-/// 2 / omega_max, with omega_max^2 bounded by the Gershgorin bound of M^-1 K (rigorous for the
-/// linearised body), reduced for stiffness-proportional damping.
-double max_stable_time_step(const Model& model);
 
 /// Fastest pressure wave speed among the body's materials [m/s].
 double max_wave_speed(const Model& model);

@@ -1,0 +1,105 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "cubespring/stable_time_step.h"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "cubespring/stiffness.h"
+
+namespace cubespring {
+namespace {
+
+// max over rows of (1/m) sum_j |K_ij| >= every eigenvalue of M^-1 K
+double gershgorin_bound(const SparseMatrix& stiffness, const Eigen::VectorXd& mass) {
+  double bound = 0.0;
+  for (int row = 0; row < stiffness.rows(); ++row) {
+    double sum = 0.0;
+    for (SparseMatrix::InnerIterator it(stiffness, row); it; ++it) sum += std::abs(it.value());
+    bound = std::max(bound, sum / mass[row / 3]);
+  }
+  return bound;
+}
+
+// Largest eigenvalue of A = M^-1/2 K M^-1/2 by Lanczos without reorthogonalisation (only the
+// extreme Ritz value is wanted, and it converges first). Stops when the top Ritz value's residual
+// |beta_k s_k| (checked every 10 steps) is below 1e-4 of it; returns that Ritz value plus its residual, the largest value
+// an eigenvalue near it can have.
+double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::VectorXd& mass) {
+  const Eigen::Index n = stiffness.rows();
+  Eigen::VectorXd inverse_sqrt_mass(n);
+  for (Eigen::Index i = 0; i < n; ++i) inverse_sqrt_mass[i] = 1.0 / std::sqrt(mass[i / 3]);
+  const auto apply = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+    return inverse_sqrt_mass.cwiseProduct(stiffness * inverse_sqrt_mass.cwiseProduct(v));
+  };
+
+  std::mt19937 random(20070301);  // fixed seed: the same body gets the same step every run
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Eigen::VectorXd q = Eigen::VectorXd::NullaryExpr(n, [&] { return uniform(random); });
+  q.normalize();
+  Eigen::VectorXd previous = Eigen::VectorXd::Zero(n);
+  std::vector<double> alphas, betas;
+  double beta = 0.0;
+  double estimate = 0.0;
+  const int max_iterations = static_cast<int>(std::min<Eigen::Index>(n, 300));
+  for (int k = 0; k < max_iterations; ++k) {
+    Eigen::VectorXd w = apply(q) - beta * previous;
+    const double alpha = q.dot(w);
+    w -= alpha * q;
+    beta = w.norm();
+    alphas.push_back(alpha);
+    betas.push_back(beta);
+
+    const int size = k + 1;
+    if (size % 10 != 0 && size != max_iterations && beta > 1e-14 * std::abs(alpha)) {
+      previous = q;
+      q = w / beta;
+      continue;
+    }
+    Eigen::VectorXd diagonal = Eigen::Map<Eigen::VectorXd>(alphas.data(), size);
+    Eigen::VectorXd off_diagonal = Eigen::Map<Eigen::VectorXd>(betas.data(), size).head(size - 1);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tridiagonal;
+    tridiagonal.computeFromTridiagonal(diagonal, off_diagonal, Eigen::ComputeEigenvectors);
+    const double ritz = tridiagonal.eigenvalues()[size - 1];
+    const double residual = std::abs(beta * tridiagonal.eigenvectors()(size - 1, size - 1));
+    estimate = ritz + residual;
+    if (residual <= 1e-4 * ritz || beta <= 1e-14 * std::abs(ritz)) break;  // converged, or exhausted the space
+    previous = q;
+    q = w / beta;
+  }
+  return estimate;
+}
+
+}  // namespace
+
+const char* frequency_bound_name(FrequencyBound bound) {
+  switch (bound) {
+    case FrequencyBound::kGershgorin: return "gershgorin";
+    case FrequencyBound::kLanczos: return "lanczos";
+  }
+  return "unknown";
+}
+
+double max_frequency(const Model& model, FrequencyBound bound) {
+  StiffnessAssembler assembler(model);
+  SparseMatrix stiffness;
+  assembler.assemble(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0, stiffness);
+  const double gershgorin = gershgorin_bound(stiffness, model.mass);
+  if (bound == FrequencyBound::kGershgorin) return std::sqrt(gershgorin);
+  return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.mass)));
+}
+
+double max_stable_time_step(const Model& model, FrequencyBound bound) {
+  double beta = 0.0;
+  for (const Material& material : model.materials) beta = std::max(beta, material.stiffness_damping);
+  const double omega = max_frequency(model, bound);
+  // with damping ratio zeta = beta omega / 2 the limit is 2 / omega (sqrt(1 + zeta^2) - zeta)
+  const double zeta = 0.5 * beta * omega;
+  return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta);
+}
+
+}  // namespace cubespring

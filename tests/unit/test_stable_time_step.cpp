@@ -1,0 +1,111 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The explicit stability limit against the body's spectrum (dense eigenvalues of M^-1/2 K M^-1/2)
+// and against what symplectic Euler does just below and just above it.
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "cubespring/integrator.h"
+#include "cubespring/stable_time_step.h"
+#include "test_support.h"
+
+namespace cubespring {
+namespace {
+
+struct Body {
+  std::string name;
+  LatticeDesc desc;
+};
+
+std::vector<Body> bodies() {
+  Material tissue = test::notes_material(0.3);
+  Material stiff = test::notes_material(0.45);
+  stiff.young_modulus = 8e5;
+  std::vector<Body> list;
+  list.push_back({"cubes 4x3x2", box_lattice({4, 3, 2}, Eigen::Vector3d::Constant(0.01), tissue)});
+  list.push_back({"bricks 3x3x3", box_lattice({3, 3, 3}, {0.01, 0.013, 0.008}, tissue)});
+  Body exact{"exact-bending 4x2x2", box_lattice({4, 2, 2}, Eigen::Vector3d::Constant(0.01), tissue)};
+  exact.desc.model = CellModel::kExactBending;
+  list.push_back(exact);
+  // an L of two materials: the stiff cells set the highest frequency
+  Body shape{"L with a stiff foot", {}};
+  shape.desc.materials = {tissue, stiff};
+  for (int x = 0; x < 4; ++x) {
+    for (int z = 0; z < 2; ++z) {
+      shape.desc.cells.push_back({x, 0, z});
+      shape.desc.cell_material.push_back(x == 0 ? 1 : 0);
+    }
+  }
+  for (int y = 1; y < 4; ++y) {
+    shape.desc.cells.push_back({0, y, 0});
+    shape.desc.cell_material.push_back(0);
+  }
+  list.push_back(shape);
+  return list;
+}
+
+double true_max_frequency(const Model& model) {
+  const Eigen::MatrixXd k = test::dense_stiffness(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite);
+  Eigen::VectorXd scale(k.rows());
+  for (Eigen::Index i = 0; i < k.rows(); ++i) scale[i] = 1.0 / std::sqrt(model.mass[i / 3]);
+  const Eigen::MatrixXd a = scale.asDiagonal() * k * scale.asDiagonal();
+  return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff());
+}
+
+TEST(StableTimeStep, LanczosFindsTheHighestFrequencyAndGershgorinBoundsIt) {
+  for (const Body& body : bodies()) {
+    Result<Model> model = build_model(body.desc);
+    ASSERT_TRUE(model.ok()) << body.name << ": " << model.message();
+    const double exact = true_max_frequency(*model);
+    const double lanczos = max_frequency(*model, FrequencyBound::kLanczos);
+    const double gershgorin = max_frequency(*model, FrequencyBound::kGershgorin);
+    EXPECT_GE(lanczos, exact * (1.0 - 1e-9)) << body.name;
+    EXPECT_LE(lanczos, exact * 1.001) << body.name;
+    EXPECT_GE(gershgorin, exact) << body.name;
+    EXPECT_NEAR(max_stable_time_step(*model, FrequencyBound::kLanczos), 2.0 / lanczos, 1e-12 / lanczos) << body.name;
+  }
+}
+
+TEST(StableTimeStep, StiffnessDampingShortensTheStep) {
+  Material damped = test::notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  const Model model = test::box_model({3, 2, 2}, damped);
+  const double omega = max_frequency(model, FrequencyBound::kLanczos);
+  const double zeta = 0.5 * 1e-4 * omega;
+  EXPECT_NEAR(max_stable_time_step(model, FrequencyBound::kLanczos) * omega / 2.0,
+              std::sqrt(1.0 + zeta * zeta) - zeta, 1e-12);
+}
+
+// Symplectic Euler on an undamped free body with random velocities: bounded at 0.99 of the
+// Lanczos limit for 5000 steps, blown up (caught by the speed check) at 1.02 of it.
+TEST(StableTimeStep, SymplecticEulerIsStableJustBelowTheLanczosLimitAndNotJustAbove) {
+  Material m;  // E = 1 MPa, nu = 0.3, no damping
+  const Model model = test::box_model({4, 3, 3}, m);
+  const double limit = max_stable_time_step(model, FrequencyBound::kLanczos);
+  EXPECT_GT(max_stable_time_step(model, FrequencyBound::kGershgorin), 0.5 * limit);
+  EXPECT_LT(max_stable_time_step(model, FrequencyBound::kGershgorin), limit);
+  for (const auto& [factor, stable] : {std::pair{0.99, true}, std::pair{1.02, false}}) {
+    State state = rest_state(model);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> uniform(-0.01, 0.01);
+    for (Eigen::Index i = 0; i < state.velocities.size(); ++i) state.velocities.data()[i] = uniform(random);
+    StepSettings settings;
+    settings.time_step = factor * limit;
+    Stepper stepper(model);
+    StepReport report;
+    double fastest = 0.0;
+    for (int i = 0; i < 5000 && report.ok(); ++i) {
+      report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+      fastest = std::max(fastest, state.velocities.colwise().norm().maxCoeff());
+    }
+    EXPECT_EQ(report.ok(), stable) << factor << " x " << limit << " s: " << report.message;
+    if (stable) {
+      EXPECT_LT(fastest, 1.0) << "velocities of 1 cm/s grew to " << fastest << " m/s";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace cubespring
