@@ -63,7 +63,7 @@ Status read_box(const JsonFields& fields, Box& box) {
 
 Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSpec& organ) {
   if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "materials", "fixed_regions",
-                                    "friction", "face_contacts"});
+                                    "friction", "face_contacts", "contact_offset"});
       !s) {
     return s;
   }
@@ -101,6 +101,7 @@ Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSp
     }
   }
   if (Status s = fields.non_negative("friction", organ.friction); !s) return s;
+  if (Status s = fields.non_negative("contact_offset", organ.contact_offset); !s) return s;
   return fields.boolean("face_contacts", organ.face_contacts);
 }
 

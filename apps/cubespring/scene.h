@@ -43,6 +43,7 @@ struct OrganSpec {
   std::vector<Box> fixed_regions;   ///< nodes resting in these boxes are fixed (held in place)
   double friction = 0.3;            ///< Coulomb mu between the tissue and every rigid body [-]
   bool face_contacts = true;        ///< tools thinner than the surface's vertex spacing cannot slip through
+  double contact_offset = 0.0;      ///< skin kept between the tissue and rigid surfaces [m]
 };
 
 struct TableSpec {

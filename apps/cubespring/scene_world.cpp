@@ -117,6 +117,7 @@ Status SceneWorld::build_organ(const Scene& scene) {
   settings.integrator = scene.integrator;
   settings.contact.friction = spec.friction;
   settings.contact.face_contacts = spec.face_contacts;
+  settings.contact.offset = spec.contact_offset;
   Result<std::unique_ptr<bullet::SoftBody>> body = bullet::SoftBody::create(settings);
   if (!body) return Status::error("organ: " + body.message());
   organ_ = std::move(body).value();

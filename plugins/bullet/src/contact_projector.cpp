@@ -13,7 +13,10 @@
 namespace cubespring::bullet {
 
 void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
-  const double thickness = 2.0 * body_.model_.cell_size.maxCoeff();
+  const ContactSettings& settings = body_.contact_;
+  ContactReach reach;
+  reach.offset = settings.offset;
+  reach.thickness = settings.max_depth > 0.0 ? settings.max_depth : 2.0 * body_.model_.cell_size.maxCoeff();
   std::vector<char> touched;
   for (RigidTrack& track : tracks) {
     // the tissue's outward normals, which tell a rigid edge's faces apart; once per track, when
@@ -24,15 +27,15 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     btVector3 high;
     shape.getAabb(track.transform, low, high);
     // a flat triangle mesh has a flat box: reach as deep as a vertex may be behind it
-    const Eigen::Array3d lower = to_eigen(low).array() - thickness;
-    const Eigen::Array3d upper = to_eigen(high).array() + thickness;
+    const Eigen::Array3d lower = to_eigen(low).array() - (reach.thickness + reach.offset);
+    const Eigen::Array3d upper = to_eigen(high).array() + (reach.thickness + reach.offset);
     touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
     for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
       if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
       if (normals.cols() == 0) vertex_normals(body_.surface_positions_, body_.surface_triangles_, normals);
       const std::optional<Eigen::Vector3d> push =
-          penetration_push(shape, track.transform, x, normals.col(v), 0.0, thickness);
+          penetration_push(shape, track.transform, x, normals.col(v), reach);
       if (!push || push->squaredNorm() == 0.0) continue;
       apply_vertex(v, *push, track);
       touched[static_cast<std::size_t>(v)] = 1;
@@ -52,7 +55,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       const Eigen::Array3d tri_low = a.cwiseMin(b).cwiseMin(c).array();
       const Eigen::Array3d tri_high = a.cwiseMax(b).cwiseMax(c).array();
       if ((tri_high < lower).any() || (tri_low > upper).any()) continue;
-      const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, thickness);
+      const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, reach);
       if (!through) continue;
       const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
       apply_face(static_cast<int>(t), through->barycentric, -through->depth * normal, track);

@@ -20,11 +20,11 @@ namespace cubespring::bullet {
 namespace {
 
 std::optional<Eigen::Vector3d> plane_push(const btStaticPlaneShape& plane, const btTransform& transform,
-                                          const Eigen::Vector3d& point, double tolerance) {
+                                          const Eigen::Vector3d& point, const ContactReach& reach) {
   const Eigen::Vector3d normal = to_eigen(transform.getBasis() * plane.getPlaneNormal());
   const Eigen::Vector3d on_plane = to_eigen(transform * (plane.getPlaneNormal() * plane.getPlaneConstant()));
-  const double height = (point - on_plane).dot(normal);
-  if (height > tolerance) return std::nullopt;
+  const double height = (point - on_plane).dot(normal) - reach.offset;
+  if (height > reach.tolerance) return std::nullopt;
   return Eigen::Vector3d(std::max(-height, 0.0) * normal);
 }
 
@@ -101,7 +101,7 @@ std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, i
 // thread, and rebuilt when the shape no longer has the support points it had (changed, or
 // another shape at the same address).
 std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen::Vector3d& p,
-                                         const Eigen::Vector3d& surface_normal) {
+                                         const Eigen::Vector3d& surface_normal, double offset) {
   struct Entry {
     Eigen::Matrix3d fingerprint = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
     std::vector<Eigen::Vector4d> planes;
@@ -128,15 +128,17 @@ std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen
   if (entry.planes.empty()) return std::nullopt;
   std::vector<Exit> exits;
   for (const Eigen::Vector4d& plane : entry.planes) {
-    const double room = plane.w() - plane.head<3>().dot(p);
+    const double room = plane.w() + offset - plane.head<3>().dot(p);
     if (room <= 0.0) return std::nullopt;
     exits.push_back({room, plane.head<3>()});
   }
   return push_through(exits, surface_normal);
 }
 
+// Each shape's own test on its dimensions grown by the offset.
 std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const btTransform& transform,
-                                           const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal) {
+                                           const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
+                                           double offset) {
   // exact inside tests in the shape's frame: Bullet's GJK signed distance is unreliable for
   // points deep inside a shape, which is where a projection needs it most
   const Eigen::Vector3d p = to_eigen(transform.invXform(to_bt(point)));
@@ -144,14 +146,14 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
   std::optional<Eigen::Vector3d> push;
   switch (convex.getShapeType()) {
     case SPHERE_SHAPE_PROXYTYPE:
-      push = capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()), 0.0, 2, p);
+      push = capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()) + offset, 0.0, 2, p);
       break;
     case BOX_SHAPE_PROXYTYPE:
-      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()), p, n);
+      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()).array() + offset, p, n);
       break;
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto& capsule = static_cast<const btCapsuleShape&>(convex);
-      push = capsule_push(static_cast<double>(capsule.getRadius()), static_cast<double>(capsule.getHalfHeight()),
+      push = capsule_push(static_cast<double>(capsule.getRadius()) + offset, static_cast<double>(capsule.getHalfHeight()),
                           capsule.getUpAxis(), p);
       break;
     }
@@ -159,11 +161,11 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       const auto& cylinder = static_cast<const btCylinderShape&>(convex);
       const int axis = cylinder.getUpAxis();
       const Eigen::Vector3d half = to_eigen(cylinder.getHalfExtentsWithMargin());
-      push = cylinder_push(static_cast<double>(cylinder.getRadius()), half[axis], axis, p, n);
+      push = cylinder_push(static_cast<double>(cylinder.getRadius()) + offset, half[axis] + offset, axis, p, n);
       break;
     }
     default:  // convex hulls, cones, multi-spheres, scaled and user shapes
-      push = hull_push(convex, p, n);
+      push = hull_push(convex, p, n, offset);
       break;
   }
   if (!push) return std::nullopt;
@@ -219,27 +221,29 @@ class NearestTriangle : public btTriangleCallback {
 };
 
 std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const btTransform& transform,
-                                            const Eigen::Vector3d& point, double tolerance, double thickness) {
+                                            const Eigen::Vector3d& point, const ContactReach& reach) {
   const btTransform inverse = transform.inverse();
   const Eigen::Vector3d local = to_eigen(inverse * to_bt(point));
   NearestTriangle nearest(local);
-  const double reach = thickness + tolerance;
-  concave.processAllTriangles(&nearest, to_bt(local - Eigen::Vector3d::Constant(reach)),
-                              to_bt(local + Eigen::Vector3d::Constant(reach)));
+  const double box = std::max(reach.thickness, reach.offset + reach.tolerance);
+  concave.processAllTriangles(&nearest, to_bt(local - Eigen::Vector3d::Constant(box)),
+                              to_bt(local + Eigen::Vector3d::Constant(box)));
   if (!nearest.found()) return std::nullopt;
   const double height = (local - nearest.closest()).dot(nearest.normal());
-  if (height > tolerance || height < -thickness) return std::nullopt;
-  if (height >= 0) return Eigen::Vector3d::Zero();
-  return Eigen::Vector3d(to_eigen(transform.getBasis() * to_bt(nearest.closest() - local)));
+  if (height - reach.offset > reach.tolerance || height < -reach.thickness) return std::nullopt;
+  if (height >= reach.offset) return Eigen::Vector3d::Zero();
+  // to the offset surface: the nearest point, then out along its triangle's normal
+  const Eigen::Vector3d target = nearest.closest() + reach.offset * nearest.normal();
+  return Eigen::Vector3d(to_eigen(transform.getBasis() * to_bt(target - local)));
 }
 
 }  // namespace
 
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
-                                                double tolerance, double thickness) {
+                                                const ContactReach& reach) {
   if (shape.getShapeType() == STATIC_PLANE_PROXYTYPE) {
-    return plane_push(static_cast<const btStaticPlaneShape&>(shape), transform, point, tolerance);
+    return plane_push(static_cast<const btStaticPlaneShape&>(shape), transform, point, reach);
   }
   if (shape.isCompound()) {
     // the deepest child decides; a point inside two children leaves the second one next sub-step
@@ -248,27 +252,27 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
     for (int child = 0; child < compound.getNumChildShapes(); ++child) {
       const std::optional<Eigen::Vector3d> push =
           penetration_push(*compound.getChildShape(child), transform * compound.getChildTransform(child), point,
-                           surface_normal, tolerance, thickness);
+                           surface_normal, reach);
       if (push && (!deepest || push->squaredNorm() > deepest->squaredNorm())) deepest = push;
     }
     return deepest;
   }
-  if (shape.isConvex()) return convex_push(static_cast<const btConvexShape&>(shape), transform, point, surface_normal);
-  if (shape.isConcave()) {
-    return concave_push(static_cast<const btConcaveShape&>(shape), transform, point, tolerance, thickness);
+  if (shape.isConvex()) {
+    return convex_push(static_cast<const btConvexShape&>(shape), transform, point, surface_normal, reach.offset);
   }
+  if (shape.isConcave()) return concave_push(static_cast<const btConcaveShape&>(shape), transform, point, reach);
   return std::nullopt;
 }
 
 std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                                const Eigen::Vector3d& c, double thickness) {
+                                                const Eigen::Vector3d& c, const ContactReach& reach) {
   if (shape.isCompound()) {
     const auto& compound = static_cast<const btCompoundShape&>(shape);
     std::optional<FacePenetration> deepest;
     for (int child = 0; child < compound.getNumChildShapes(); ++child) {
       const std::optional<FacePenetration> found = face_penetration(
-          *compound.getChildShape(child), transform * compound.getChildTransform(child), a, b, c, thickness);
+          *compound.getChildShape(child), transform * compound.getChildTransform(child), a, b, c, reach);
       if (found && (!deepest || found->depth > deepest->depth)) deepest = found;
     }
     return deepest;
@@ -282,10 +286,11 @@ std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, c
   const btVector3 local_direction = transform.getBasis().transpose() * to_bt(-normal);
   const Eigen::Vector3d deepest =
       to_eigen(transform * static_cast<const btConvexShape&>(shape).localGetSupportingVertex(local_direction));
-  const double depth = (a - deepest).dot(normal);
-  if (depth <= 0.0 || depth > thickness) return std::nullopt;
+  const double depth_of_shape = (a - deepest).dot(normal);
+  const double depth = depth_of_shape + reach.offset;  // the grown shape reaches that much deeper
+  if (depth <= 0.0 || depth > reach.thickness) return std::nullopt;
   // its foot on the plane must lie inside the triangle
-  const Eigen::Vector3d foot = deepest + depth * normal;
+  const Eigen::Vector3d foot = deepest + depth_of_shape * normal;
   const double u = (c - b).cross(foot - b).dot(normal) / twice_area;
   const double v = (a - c).cross(foot - c).dot(normal) / twice_area;
   const double w = 1.0 - u - v;

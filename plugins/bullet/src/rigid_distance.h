@@ -11,19 +11,31 @@
 
 namespace cubespring::bullet {
 
-/// The move [m] from `point` to the nearest point of the shape's surface when the point is inside
-/// the shape or within `tolerance` of its surface from outside (the move is then zero or points
-/// outward); nothing when it is clear of the shape. For flat-faced shapes (boxes, cylinders,
-/// hulls) the face is the one the tissue presses on, found by the tissue's outward unit normal
-/// `surface_normal` at the point (zero: unknown, then the nearest face); the move is the shortest
-/// out through that face (docs/bullet-plugin.md, section 2.2). Convex shapes, compounds of them, static
-/// planes and concave triangle meshes (one-sided: inside means behind the nearest triangle, less
-/// than `thickness` deep). Spheres, boxes, capsules, cylinders and convex polyhedra (hulls) are
-/// tested exactly in their own frame; every other convex shape (cones, multi-spheres, scaled or
-/// user shapes) against the hull of its support points (hull_planes.h).
+/// How far around a rigid surface contact acts [m].
+struct ContactReach {
+  /// The surface is taken this far outside the shape: a skin that keeps the tissue off it.
+  double offset = 0.0;
+  /// A point this far outside the (offset) surface touches it: its move is zero, not nothing.
+  double tolerance = 0.0;
+  /// One-sided surfaces (triangle meshes, and surface triangles in face_penetration): how deep
+  /// behind them a point is still taken as inside and pushed out.
+  double thickness = 0.0;
+};
+
+/// The move [m] from `point` to the nearest point of the shape's surface, grown by reach.offset,
+/// when the point is inside it or within reach.tolerance of it from outside (the move is then
+/// zero or points outward); nothing when it is clear of the shape. For flat-faced shapes (boxes,
+/// cylinders, hulls) the face is the one the tissue presses on, found by the tissue's outward
+/// unit normal `surface_normal` at the point (zero: unknown, then the nearest face); the move is
+/// the shortest out through that face (docs/bullet-plugin.md, section 2.2). Convex shapes,
+/// compounds of them, static planes and concave triangle meshes (one-sided: inside means behind
+/// the nearest triangle, less than reach.thickness deep). Spheres, boxes, capsules, cylinders and
+/// convex polyhedra (hulls) are tested exactly in their own frame, grown by the offset face by
+/// face (a grown box keeps its sharp corners); every other convex shape (cones, multi-spheres,
+/// scaled or user shapes) against the hull of its support points (hull_planes.h).
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
-                                                double tolerance, double thickness);
+                                                const ContactReach& reach);
 
 /// A convex part of a rigid shape reaching through a surface triangle from outside: the point of
 /// the shape deepest behind the triangle's plane lies over the triangle. Vertex tests alone would
@@ -33,10 +45,11 @@ struct FacePenetration {
   double depth = 0.0;           ///< behind the plane [m], > 0
 };
 
-/// The deepest convex child of a shape through triangle (a, b, c) (counter-clockwise from outside),
-/// when less than `thickness` deep; nothing for planes and concave meshes, which vertex tests cover.
+/// The deepest convex child of a shape, grown by reach.offset, through triangle (a, b, c)
+/// (counter-clockwise from outside), when less than reach.thickness deep; nothing for planes and
+/// concave meshes, which vertex tests cover.
 std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                                const Eigen::Vector3d& c, double thickness);
+                                                const Eigen::Vector3d& c, const ContactReach& reach);
 
 }  // namespace cubespring::bullet

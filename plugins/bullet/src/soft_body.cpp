@@ -18,6 +18,12 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   if (!(settings.contact.friction >= 0.0)) {
     return Status::error("contact friction " + std::to_string(settings.contact.friction) + " must be >= 0");
   }
+  if (!(settings.contact.offset >= 0.0 && std::isfinite(settings.contact.offset))) {
+    return Status::error("contact offset " + std::to_string(settings.contact.offset) + " m must be a finite length >= 0");
+  }
+  if (!(settings.contact.max_depth >= 0.0 && std::isfinite(settings.contact.max_depth))) {
+    return Status::error("contact max_depth " + std::to_string(settings.contact.max_depth) + " m must be a finite length >= 0 (0: two cells)");
+  }
   if (!(settings.time_step_safety > 0.0 && settings.time_step_safety <= 1.0)) {
     return Status::error("time step safety " + std::to_string(settings.time_step_safety) + " must be in (0, 1]");
   }

@@ -166,9 +166,10 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     for (auto& [object, by_body] : wrenches_) by_body.erase(&body);
   }
 
-  // rigid objects near the body: its bounds grown by a cell and by how far its nodes may move
+  // rigid objects near the body: its bounds grown by a cell, the contact offset and how far its
+  // nodes may move
   const double speed = body.state_.velocities.colwise().norm().maxCoeff();
-  const double reach = body.model_.cell_size.maxCoeff() + 2.0 * speed * step_length;
+  const double reach = body.model_.cell_size.maxCoeff() + body.contact_.offset + 2.0 * speed * step_length;
   OverlapCollector overlaps;
   getBroadphase()->aabbTest(to_bt(body.surface_positions_.rowwise().minCoeff().array() - reach),
                             to_bt(body.surface_positions_.rowwise().maxCoeff().array() + reach), overlaps);

@@ -36,6 +36,13 @@ struct ContactSettings {
   /// asymmetric triangulation it pushes round bodies resting in a dimple sideways, and they roll
   /// (docs/bullet-plugin.md section 5).
   bool face_contacts = false;
+  /// Contact is a projection, not a penalty spring: it has no stiffness to tune, at any scale.
+  /// Its one length is this skin [m], >= 0: the tissue is kept this far outside every rigid
+  /// surface (0, the default: touching, whatever the scene's size).
+  double offset = 0.0;
+  /// How deep behind a one-sided surface (a triangle mesh) a vertex still counts as inside and
+  /// is pushed out [m], >= 0; 0 (the default) means two cells of the body.
+  double max_depth = 0.0;
 };
 
 /// What to build a soft body from.
