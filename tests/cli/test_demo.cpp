@@ -397,6 +397,7 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
       {"{\"render\": {\"wireframe\": \"yes\"}}", "\"wireframe\" in \"render\" must be true or false, got string"},
       {"{\"organ\": {\"model\": \"springs\"}}", "\"model\" in \"organ\" must be \"baudet2007\" or \"exact-bending\""},
       {"{\"time_step\": -1}", "\"time_step\" must be > 0, got -1"},
+      {"{\"organ\": {\"contact_offset\": -0.001}}", "\"contact_offset\" in \"organ\" must be >= 0, got -0.001"},
       {"{\"duration\": 1,\n \"duration\": 2}", "scene.json:2: duplicate key \"duration\""},
       {"{\"duration\": 1,\n}", "scene.json:2: JSON syntax error"},
   };
