@@ -2,6 +2,9 @@
 // SPDX-License-Identifier: MIT
 // Forces: equilibrium at rest, energy gradient, invariance, balance, the correction's size and sign.
 #include <cmath>
+#include <cstring>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -114,18 +117,51 @@ TEST(Forces, CorrectionSizeAndSignUnderUniaxialStress) {
   }
 }
 
+// Threads take whole blocks of the force pass, whose sums do not depend on who runs them: the
+// same bits from 1 and 2 threads on bodies of at least 2 blocks: a box, with twist and stiffness
+// damping, an ellipsoid of cells (irregular ends of rows), each also with a crushed cell (the
+// inversion forces, added between the passes).
 TEST(Forces, ThreadCountDoesNotChangeABit) {
-  const Model model = test::box_model({12, 10, 8}, notes_material(0.3));  // enough springs for 2 threads
-  State state = rest_state(model);
-  state.positions = test::perturbed(model, 1e-3);
-  state.velocities = test::perturbed(model, 0.1) - model.rest_positions;
-  Loads loads;
-  loads.gravity = {0, 0, -9.81};
-  ForceWorkspace ws;
-  Eigen::Matrix3Xd one, two;
-  compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
-  compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
-  EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  LatticeDesc ellipsoid;
+  ellipsoid.materials = {damped};
+  for (int i = 0; i < 11; ++i) {
+    for (int j = 0; j < 11; ++j) {
+      for (int k = 0; k < 29; ++k) {  // semi-axes 5, 5 and 14 cells
+        if ((i - 5) * (i - 5) / 25.0 + (j - 5) * (j - 5) / 25.0 + (k - 14) * (k - 14) / 196.0 <= 1.0) ellipsoid.cells.push_back({i, j, k});
+      }
+    }
+  }
+  LatticeDesc exact = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
+  exact.model = CellModel::kExactBending;
+  const std::vector<std::pair<const char*, LatticeDesc>> bodies{
+      {"box", box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), notes_material(0.3))},
+      {"exact-bending box", exact},
+      {"ellipsoid", ellipsoid}};
+  for (const auto& [name, desc] : bodies) {
+    for (const bool crushed : {false, true}) {
+      Result<Model> built = build_model(desc);
+      ASSERT_TRUE(built.ok()) << built.message();
+      const Model& model = built.value();
+      ASSERT_GE(model.force_block_nodes.size(), 3u) << name << ": too few springs for 2 blocks";
+      State state = rest_state(model);
+      state.positions = test::perturbed(model, 1e-3);
+      state.velocities = test::perturbed(model, 0.1) - model.rest_positions;
+      if (crushed) {  // the middle cell's top face pushed through its bottom face
+        const int c = model.num_cells() / 2;
+        for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[c][corner]) -= 0.015;
+        ASSERT_LT(cell_signed_volume(model, state.positions, c), 0.0) << name;
+      }
+      Loads loads;
+      loads.gravity = {0, 0, -9.81};
+      ForceWorkspace ws;
+      Eigen::Matrix3Xd one, two;
+      compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+      compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+      EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0) << name << (crushed ? ", crushed" : "");
+    }
+  }
 }
 
 TEST(Forces, GravityPullsEveryMass) {
