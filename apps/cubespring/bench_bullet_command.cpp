@@ -73,6 +73,7 @@ struct BenchBulletOptions {
   double damping = 10.0;    // mass-proportional (Rayleigh alpha) damping for every engine [1/s]
   std::vector<int> iterations{1, 8, 32};  // btSoftBody position iterations
   std::vector<std::string> models{"baudet2007", "exact-bending"};
+  std::vector<int> threads{1, 2};   // force-pass threads of the explicit cubespring rows
   double drift_window = 0.5;        // the tip's change over the last this many seconds shows settling [s]
   double max_case_seconds = 60.0;   // wall-time cap per case [s]
   bool json = false;
@@ -117,6 +118,7 @@ struct Row {
   double reference = kNaN;     // [m] FE tip
   double base_wall = kNaN;     // [s] the size's cubespring explicit (first model) wall per sim s
   double static_tip = kNaN;    // [m] cubespring rows: the same lattice's static equilibrium (Newton)
+  int threads = 1;             // cubespring rows: force-pass threads (Bullet runs on one)
   std::string status = "ok";   // ok | diverged ... | capped ...
   bool diverged = false;
   bool capped = false;
@@ -204,7 +206,7 @@ Beam make_beam(const Eigen::Vector3i& counts, const BenchBulletOptions& o) {
 
 // ---- cubespring ----------------------------------------------------------------------------
 
-Row run_cubespring(const Beam& beam, CellModel cell_model, bool implicit, const BenchBulletOptions& o) {
+Row run_cubespring(const Beam& beam, CellModel cell_model, bool implicit, int threads, const BenchBulletOptions& o) {
   LatticeDesc desc = box_lattice(beam.counts, Eigen::Vector3d::Constant(kCellSize), beam.material);
   desc.model = cell_model;
   Result<Model> built = build_model(desc);
@@ -220,6 +222,8 @@ Row run_cubespring(const Beam& beam, CellModel cell_model, bool implicit, const 
   Row row;
   row.engine = implicit ? "cubespring implicit" : "cubespring explicit";
   StepSettings settings;
+  settings.threads = threads;
+  row.threads = threads;
   int sub_steps = 1;
   long solver_iterations = 0, steps = 0;
   std::ostringstream setting;
@@ -233,6 +237,7 @@ Row run_cubespring(const Beam& beam, CellModel cell_model, bool implicit, const 
     sub_steps = std::max(1, static_cast<int>(std::ceil(o.dt / max_stable_time_step(model) - 1e-9)));
     settings.time_step = o.dt / sub_steps;
     setting << "symplectic Euler, " << sub_steps << " x " << 1e3 * settings.time_step << " ms";
+    if (threads > 1) setting << ", " << threads << " threads";
   }
   const auto step_frame = [&]() -> std::string {
     for (int i = 0; i < sub_steps; ++i) {
@@ -435,6 +440,10 @@ void check_options(const BenchBulletOptions& o) {
     if (i < 1) throw std::runtime_error("--iterations " + std::to_string(i) + ": each count must be >= 1");
   }
   if (o.models.empty()) throw std::runtime_error("--models: expected at least one cell model");
+  if (o.threads.empty()) throw std::runtime_error("--threads: expected at least one thread count");
+  for (const int t : o.threads) {
+    if (t < 1) throw std::runtime_error("--threads " + std::to_string(t) + ": each count must be >= 1");
+  }
 }
 
 struct SizeSummary {
@@ -487,7 +496,8 @@ void print_table(const std::vector<Row>& rows, const std::vector<SizeSummary>& s
               "(rho h^3 / 8 per cell corner), so the loads are the same, and the clamped nodes fixed (cubespring:\n"
               "Constraints::fix_nodes; Bullet: mass 0). Damping: cubespring Material::mass_damping = alpha;\n"
               "btSoftBody kDP = alpha dt (velocities scaled by 1 - kDP each step); FEM damping_alpha = alpha,\n"
-              "damping_beta = 0; no stiffness damping anywhere. cubespring: 1 thread, double precision; explicit\n"
+              "damping_beta = 0; no stiffness damping anywhere. cubespring: double precision, 1 thread unless its case\n"
+              "says more (Bullet runs on one); explicit\n"
               "sub-steps: the fewest of equal length within max_stable_time_step. Bullet: stepSimulation(dt, 0),\n"
               "one internal step per frame; btSoftBody links = the lattice's springs (edges and body diagonals);\n"
               "FEM: btDeformableBodySolver as in Bullet's volumetric demos (setImplicit(true), no line search,\n"
@@ -525,8 +535,9 @@ void print_table(const std::vector<Row>& rows, const std::vector<SizeSummary>& s
     for (const Row& r : rows) {
       if (r.size != s.size || r.engine.rfind("cubespring", 0) != 0 || r.diverged) continue;
       const double speedup = fem->wall_per_sim / r.wall_per_sim;
-      std::printf("target %s, %s (%s): %.3gx faster than the FEM in wall time (%.3gx in CPU time)%s", s.size.c_str(),
-                  r.engine.c_str(), r.setting.substr(0, r.setting.find(',')).c_str(), speedup,
+      const std::string threads = r.threads > 1 ? ", " + std::to_string(r.threads) + " threads against the FEM's one" : "";
+      std::printf("target %s, %s (%s%s): %.3gx faster than the FEM in wall time (%.3gx in CPU time)%s", s.size.c_str(),
+                  r.engine.c_str(), r.setting.substr(0, r.setting.find(',')).c_str(), threads.c_str(), speedup,
                   fem->cpu_per_sim / r.cpu_per_sim, fem->capped || r.capped ? " (time extrapolated)" : "");
       if (!fem->settled() || !r.settled()) {
         std::printf(", accuracy not compared (%s not settled): speed %s\n", r.settled() ? "FEM" : "cubespring",
@@ -570,11 +581,14 @@ int run_bench_bullet(const BenchBulletOptions& o) {
       for (const CellModel model : cell_models) {
         const double static_tip = cubespring_static_tip(beam, model);
         summary.static_tips.emplace_back(cell_model_name(model), static_tip);
-        for (const bool implicit : {false, true}) {
-          Row row = run_cubespring(beam, model, implicit, o);
+        for (const int threads : o.threads) {
+          Row row = run_cubespring(beam, model, false, threads, o);
           row.static_tip = static_tip;
           add(std::move(row));
         }
+        Row row = run_cubespring(beam, model, true, 1, o);
+        row.static_tip = static_tip;
+        add(std::move(row));
       }
       for (const int iterations : o.iterations) add(run_soft_body(beam, iterations, o));
       add(run_deformable(beam, o));
@@ -603,6 +617,7 @@ int run_bench_bullet(const BenchBulletOptions& o) {
                      {"ratio_to_cubespring_explicit", number(r.wall_per_sim / r.base_wall)},
                      {"simulated_s", r.simulated},
                      {"damping_alpha_per_s", o.damping},
+                     {"threads", r.threads},
                      {"status", r.status}});
     }
     std::cout << out.dump(2) << "\n";
@@ -627,6 +642,9 @@ Command add_bench_bullet_command(CLI::App& app) {
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--models", options->models, "cubespring cell models, separated by ','")
+      ->delimiter(',')
+      ->capture_default_str();
+  cmd->add_option("--threads", options->threads, "force-pass threads of the explicit cubespring rows, separated by ','")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--max-case-seconds", options->max_case_seconds,

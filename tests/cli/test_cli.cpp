@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <utility>
 
@@ -155,6 +156,36 @@ TEST(Cli, VoxelizeTableNamesTheParts) {
   EXPECT_NE(run.out.find("tumour_tissue"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("voxel volume"), std::string::npos) << run.out;
 }
+
+#ifdef CUBESPRING_HAS_BULLET
+// A short bench-bullet run: every engine's row, the explicit cubespring row once per thread count
+// with the same tip to the bit (threads do not change results), and its JSON keys.
+TEST(Cli, BenchBulletRowsCoverEveryEngineAndThreadCount) {
+  const nlohmann::json rows = run_json(
+      "bench-bullet --sizes 8,2,2 --seconds 0.05 --iterations 1 --models baudet2007 --threads 1,2 --max-case-seconds 20");
+  ASSERT_TRUE(rows.is_array());
+  std::map<std::string, int> engines;
+  std::map<int, double> explicit_tip;
+  for (const nlohmann::json& row : rows) {
+    for (const char* key : {"size", "engine", "case", "wall_s_per_sim_s", "cpu_s_per_sim_s", "tip_deflection_m",
+                            "fe_reference_m", "error_vs_fe", "threads", "status"}) {
+      EXPECT_TRUE(row.contains(key)) << key << " missing in " << row.dump();
+    }
+    ++engines[row["engine"].get<std::string>()];
+    EXPECT_GT(row["wall_s_per_sim_s"].get<double>(), 0.0) << row.dump();
+    if (row["engine"] == "cubespring explicit") {
+      explicit_tip[row["threads"].get<int>()] = row["tip_deflection_m"].get<double>();
+    }
+  }
+  EXPECT_EQ(engines["cubespring explicit"], 2);
+  EXPECT_EQ(engines["cubespring implicit"], 1);
+  EXPECT_EQ(engines["btSoftBody"], 1);
+  EXPECT_EQ(engines["Bullet deformable FEM"], 1);
+  ASSERT_EQ(explicit_tip.size(), 2u);
+  EXPECT_LT(explicit_tip[1], 0.0) << "the beam sags under gravity";
+  EXPECT_EQ(explicit_tip[1], explicit_tip[2]);
+}
+#endif
 
 struct BadArgument {
   const char* arguments;
