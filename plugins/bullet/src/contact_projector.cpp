@@ -23,6 +23,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     // a vertex is near it
     Eigen::Matrix3Xd normals;
     const btCollisionShape& shape = *track.object->getCollisionShape();
+    const bool uses_normals = push_uses_surface_normal(shape);
     btVector3 low;
     btVector3 high;
     shape.getAabb(track.transform, low, high);
@@ -33,14 +34,16 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
       if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
-      if (normals.cols() == 0) vertex_normals(body_.surface_positions_, body_.surface_triangles_, normals);
-      const std::optional<Eigen::Vector3d> push =
-          penetration_push(shape, track.transform, x, normals.col(v), reach);
+      if (uses_normals && normals.cols() == 0) {
+        vertex_normals(body_.surface_positions_, body_.surface_triangles_, normals);
+      }
+      const std::optional<Eigen::Vector3d> push = penetration_push(
+          shape, track.transform, x, uses_normals ? Eigen::Vector3d(normals.col(v)) : Eigen::Vector3d::Zero(), reach);
       if (!push || push->squaredNorm() == 0.0) continue;
       apply_vertex(v, *push, track);
       touched[static_cast<std::size_t>(v)] = 1;
     }
-    body_.update_surface();
+    body_.update_moved_surface();
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
     for (Eigen::Index t = 0; body_.contact_.face_contacts && t < body_.surface_triangles_.cols(); ++t) {
@@ -60,7 +63,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
       apply_face(static_cast<int>(t), through->barycentric, -through->depth * normal, track);
     }
-    body_.update_surface();
+    body_.update_moved_surface();
   }
 }
 
@@ -121,6 +124,7 @@ Eigen::Vector3d ContactProjector::apply(const Eigen::Vector3d& push, RigidTrack&
     const double share = w / body_.model_.mass[node];
     body_.state_.positions.col(node) += share / inverse_mass * push;
     body_.state_.velocities.col(node) += share * impulse;
+    body_.mark_moved(node);
   }
   track.receive(-impulse, contact);
   return impulse;

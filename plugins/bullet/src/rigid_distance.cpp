@@ -239,6 +239,18 @@ std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const
 
 }  // namespace
 
+bool push_uses_surface_normal(const btCollisionShape& shape) {
+  if (shape.isCompound()) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    for (int child = 0; child < compound.getNumChildShapes(); ++child) {
+      if (push_uses_surface_normal(*compound.getChildShape(child))) return true;
+    }
+    return false;
+  }
+  if (!shape.isConvex()) return false;  // planes and triangle meshes
+  return shape.getShapeType() != SPHERE_SHAPE_PROXYTYPE && shape.getShapeType() != CAPSULE_SHAPE_PROXYTYPE;
+}
+
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
                                                 const ContactReach& reach) {

@@ -37,6 +37,10 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
                                                 const ContactReach& reach);
 
+/// Whether penetration_push() looks at `surface_normal` for this shape: only flat-faced convex
+/// shapes (boxes, cylinders, hulls and the hulls of other convex shapes) and compounds with one.
+bool push_uses_surface_normal(const btCollisionShape& shape);
+
 /// A convex part of a rigid shape reaching through a surface triangle from outside: the point of
 /// the shape deepest behind the triangle's plane lies over the triangle. Vertex tests alone would
 /// let a tool tip thinner than a triangle pass between its corners.

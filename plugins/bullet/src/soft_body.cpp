@@ -60,6 +60,22 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->surface_node_ = std::move(surface.node);
   body->surface_weight_ = std::move(surface.weight);
   body->surface_triangles_ = std::move(surface.triangles);
+  const int num_nodes = body->model_.num_nodes();
+  body->node_vertex_offset_.assign(static_cast<std::size_t>(num_nodes) + 1, 0);
+  for (const int node : body->surface_node_) ++body->node_vertex_offset_[static_cast<std::size_t>(node) + 1];
+  for (int n = 0; n < num_nodes; ++n) {
+    body->node_vertex_offset_[static_cast<std::size_t>(n) + 1] += body->node_vertex_offset_[static_cast<std::size_t>(n)];
+  }
+  body->node_vertex_.resize(body->surface_node_.size());
+  std::vector<int> fill(body->node_vertex_offset_.begin(), body->node_vertex_offset_.end() - 1);
+  for (std::size_t v = 0; v + 1 < body->surface_offset_.size(); ++v) {
+    for (int e = body->surface_offset_[v]; e < body->surface_offset_[v + 1]; ++e) {
+      const auto node = static_cast<std::size_t>(body->surface_node_[static_cast<std::size_t>(e)]);
+      body->node_vertex_[static_cast<std::size_t>(fill[node]++)] = static_cast<int>(v);
+    }
+  }
+  body->node_moved_.assign(static_cast<std::size_t>(num_nodes), 0);
+  body->vertex_stale_.assign(body->surface_offset_.size() - 1, 0);
   body->update_surface();
   return body;
 }
@@ -72,6 +88,38 @@ void SoftBody::update_surface() {
       surface_positions_.col(v) += surface_weight_[static_cast<std::size_t>(e)] *
                                    state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
     }
+  }
+  for (const int node : moved_nodes_) node_moved_[static_cast<std::size_t>(node)] = 0;
+  moved_nodes_.clear();
+}
+
+void SoftBody::mark_moved(int node) {
+  if (node_moved_[static_cast<std::size_t>(node)]) return;
+  node_moved_[static_cast<std::size_t>(node)] = 1;
+  moved_nodes_.push_back(node);
+}
+
+void SoftBody::update_moved_surface() {
+  // each stale vertex once (it may hang from several moved nodes)
+  stale_vertices_.clear();
+  for (const int node : moved_nodes_) {
+    for (int k = node_vertex_offset_[static_cast<std::size_t>(node)]; k < node_vertex_offset_[static_cast<std::size_t>(node) + 1]; ++k) {
+      const int v = node_vertex_[static_cast<std::size_t>(k)];
+      if (vertex_stale_[static_cast<std::size_t>(v)]) continue;
+      vertex_stale_[static_cast<std::size_t>(v)] = 1;
+      stale_vertices_.push_back(v);
+    }
+    node_moved_[static_cast<std::size_t>(node)] = 0;
+  }
+  moved_nodes_.clear();
+  // summed in the same order as update_surface(), so the same bits
+  for (const int v : stale_vertices_) {
+    surface_positions_.col(v).setZero();
+    for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
+      surface_positions_.col(v) += surface_weight_[static_cast<std::size_t>(e)] *
+                                   state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
+    }
+    vertex_stale_[static_cast<std::size_t>(v)] = 0;
   }
 }
 

@@ -121,7 +121,12 @@ class SoftBody {
   friend class World;
   friend class ContactProjector;
   SoftBody() = default;
+  /// Every contact-surface vertex from the nodes (after a step moved them all).
   void update_surface();
+  /// Node n was moved by a contact: its vertices are stale until update_moved_surface().
+  void mark_moved(int node);
+  /// Recomputes the vertices of the nodes marked since the last update, as update_surface() does.
+  void update_moved_surface();
 
   Model model_;
   State state_;
@@ -140,6 +145,13 @@ class SoftBody {
   std::vector<double> surface_weight_;
   Eigen::Matrix3Xi surface_triangles_;
   Eigen::Matrix3Xd surface_positions_;
+  // the other way round: the vertices each node enters, entries node_vertex_offset_[n] .. [n+1]-1
+  std::vector<int> node_vertex_offset_;
+  std::vector<int> node_vertex_;
+  std::vector<int> moved_nodes_;
+  std::vector<char> node_moved_;
+  std::vector<int> stale_vertices_;
+  std::vector<char> vertex_stale_;
   Embedding embedding_;
 
   std::vector<std::optional<Anchor>> anchors_;
