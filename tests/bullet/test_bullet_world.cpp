@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "bullet_scene.h"
+#include "cubespring/embedding.h"
+#include "cubespring/shapes.h"
 
 namespace cubespring {
 namespace {
@@ -246,6 +248,31 @@ TEST(BulletWorld, PickingFindsTheFaceAndNodeUnderARay) {
   const Eigen::Vector3d node = soft->model().rest_positions.col(hit->nearest_node);
   EXPECT_LT((node - Eigen::Vector3d(0.01, -0.01, 0.02)).norm(), 1e-12);
   EXPECT_FALSE(soft->ray_test(Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, 1, -1)).has_value());
+}
+
+// Contacts refresh only the vertices of the nodes they moved: after every step, with a visual
+// mesh resting on a plane and a box pressed into it, the contact surface is where the embedding
+// puts it from the nodes.
+TEST(BulletWorld, ContactSurfaceFollowsTheNodesAfterEveryStep) {
+  BulletScene scene;
+  scene.add_floor();
+  bullet::SoftBodySettings settings = block({6, 6, 6}, kCell, tissue());
+  settings.visual_mesh = sphere_mesh(0.029, 3, Eigen::Vector3d(0, 0, 0.03));
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  ASSERT_NE(soft, nullptr);
+  btRigidBody* press = scene.add_rigid(new btBoxShape(btVector3(0.01f, 0.01f, 0.01f)), 0.0, at(0, 0, 0.068), true);
+  Eigen::Matrix3Xd expected;
+  double largest_gap = 0.0;
+  for (int step = 0; step < 40; ++step) {
+    const btTransform pose = at(0, 0, 0.068 - 0.0002 * step);  // 8 mm down into the top of the ball
+    press->setWorldTransform(pose);
+    scene.run(1.0 / 60.0);
+    ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+    embedded_positions(soft->model(), soft->embedding(), soft->state().positions, expected);
+    largest_gap = std::max(largest_gap, (soft->surface_vertices() - expected).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(largest_gap, 1e-15 + 1e-12 * 0.03);
+  EXPECT_GT(scene.world().getContactWrench(press).contacts, 0) << "the box presses on the ball";
 }
 
 }  // namespace
