@@ -250,19 +250,6 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.has_mass_damping |= material.mass_damping > 0.0;
   }
 
-  // node -> spring incidence in ascending spring order (the order of a sequential scatter)
-  model.node_spring_offset.assign(num_nodes + 1, 0);
-  for (const auto& ends : model.spring_nodes) {
-    ++model.node_spring_offset[ends[0] + 1];
-    ++model.node_spring_offset[ends[1] + 1];
-  }
-  for (int n = 0; n < num_nodes; ++n) model.node_spring_offset[n + 1] += model.node_spring_offset[n];
-  model.node_spring.resize(model.node_spring_offset.back());
-  std::vector<int> fill(model.node_spring_offset.begin(), model.node_spring_offset.end() - 1);
-  for (int s = 0; s < num_springs; ++s) {
-    model.node_spring[fill[model.spring_nodes[s][0]]++] = 2 * s;
-    model.node_spring[fill[model.spring_nodes[s][1]]++] = 2 * s + 1;
-  }
   split_force_blocks(model);
   return model;
 }

@@ -70,11 +70,6 @@ struct Model {
   bool has_stiffness_damping = false;  ///< some material has beta > 0
   bool has_mass_damping = false;       ///< some material has alpha > 0
 
-  // node -> spring incidence in ascending spring order: entries node_spring_offset[n] .. [n+1]-1
-  // of node_spring, each spring * 2 + side (side 0: the node is spring_nodes[s][0]).
-  std::vector<int> node_spring_offset;
-  std::vector<int> node_spring;
-
   /// Blocks of the force pass (docs/data-layout.md): block b holds the springs whose first node is
   /// in force_block_nodes[b] .. [b+1]-1; their second nodes stay below force_block_reach[b], which
   /// is at most the end of block b+1. Threads take whole blocks, and the count depends on the body

@@ -31,8 +31,6 @@ Model single_spring(double m0, double m1, double k) {
   model.spring_damping = {0.0};
   model.spring_cell_offset = {0, 0};
   model.node_first_spring = {0, 1, 1};
-  model.node_spring_offset = {0, 1, 2};
-  model.node_spring = {0, 1};
   return model;
 }
 
