@@ -24,7 +24,7 @@ std::optional<Eigen::Vector3d> plane_push(const btStaticPlaneShape& plane, const
   const Eigen::Vector3d normal = to_eigen(transform.getBasis() * plane.getPlaneNormal());
   const Eigen::Vector3d on_plane = to_eigen(transform * (plane.getPlaneNormal() * plane.getPlaneConstant()));
   const double height = (point - on_plane).dot(normal) - reach.offset;
-  if (height > reach.tolerance) return std::nullopt;
+  if (height > 0.0) return std::nullopt;
   return Eigen::Vector3d(std::max(-height, 0.0) * normal);
 }
 
@@ -225,12 +225,12 @@ std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const
   const btTransform inverse = transform.inverse();
   const Eigen::Vector3d local = to_eigen(inverse * to_bt(point));
   NearestTriangle nearest(local);
-  const double box = std::max(reach.thickness, reach.offset + reach.tolerance);
+  const double box = std::max(reach.thickness, reach.offset);
   concave.processAllTriangles(&nearest, to_bt(local - Eigen::Vector3d::Constant(box)),
                               to_bt(local + Eigen::Vector3d::Constant(box)));
   if (!nearest.found()) return std::nullopt;
   const double height = (local - nearest.closest()).dot(nearest.normal());
-  if (height - reach.offset > reach.tolerance || height < -reach.thickness) return std::nullopt;
+  if (height > reach.offset || height < -reach.thickness) return std::nullopt;
   if (height >= reach.offset) return Eigen::Vector3d::Zero();
   // to the offset surface: the nearest point, then out along its triangle's normal
   const Eigen::Vector3d target = nearest.closest() + reach.offset * nearest.normal();

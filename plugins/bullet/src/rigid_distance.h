@@ -15,16 +15,14 @@ namespace cubespring::bullet {
 struct ContactReach {
   /// The surface is taken this far outside the shape: a skin that keeps the tissue off it.
   double offset = 0.0;
-  /// A point this far outside the (offset) surface touches it: its move is zero, not nothing.
-  double tolerance = 0.0;
   /// One-sided surfaces (triangle meshes, and surface triangles in face_penetration): how deep
   /// behind them a point is still taken as inside and pushed out.
   double thickness = 0.0;
 };
 
 /// The move [m] from `point` to the nearest point of the shape's surface, grown by reach.offset,
-/// when the point is inside it or within reach.tolerance of it from outside (the move is then
-/// zero or points outward); nothing when it is clear of the shape. For flat-faced shapes (boxes,
+/// when the point is inside it (or on it: the move is then zero); nothing when it is clear of the
+/// shape. For flat-faced shapes (boxes,
 /// cylinders, hulls) the face is the one the tissue presses on, found by the tissue's outward
 /// unit normal `surface_normal` at the point (zero: unknown, then the nearest face); the move is
 /// the shortest out through that face (docs/bullet-plugin.md, section 2.2). Convex shapes,
