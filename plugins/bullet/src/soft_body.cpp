@@ -60,35 +60,40 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->surface_node_ = std::move(surface.node);
   body->surface_weight_ = std::move(surface.weight);
   body->surface_triangles_ = std::move(surface.triangles);
-  const int num_nodes = body->model_.num_nodes();
-  body->node_vertex_offset_.assign(static_cast<std::size_t>(num_nodes) + 1, 0);
-  for (const int node : body->surface_node_) ++body->node_vertex_offset_[static_cast<std::size_t>(node) + 1];
-  for (int n = 0; n < num_nodes; ++n) {
-    body->node_vertex_offset_[static_cast<std::size_t>(n) + 1] += body->node_vertex_offset_[static_cast<std::size_t>(n)];
-  }
-  body->node_vertex_.resize(body->surface_node_.size());
-  std::vector<int> fill(body->node_vertex_offset_.begin(), body->node_vertex_offset_.end() - 1);
-  for (std::size_t v = 0; v + 1 < body->surface_offset_.size(); ++v) {
-    for (int e = body->surface_offset_[v]; e < body->surface_offset_[v + 1]; ++e) {
-      const auto node = static_cast<std::size_t>(body->surface_node_[static_cast<std::size_t>(e)]);
-      body->node_vertex_[static_cast<std::size_t>(fill[node]++)] = static_cast<int>(v);
-    }
-  }
-  body->node_moved_.assign(static_cast<std::size_t>(num_nodes), 0);
-  body->vertex_stale_.assign(body->surface_offset_.size() - 1, 0);
+  body->index_vertices_by_node();
   body->update_surface();
   return body;
 }
 
-void SoftBody::update_surface() {
-  const int vertices = static_cast<int>(surface_offset_.size()) - 1;
-  surface_positions_.setZero(3, vertices);
-  for (int v = 0; v < vertices; ++v) {
-    for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
-      surface_positions_.col(v) += surface_weight_[static_cast<std::size_t>(e)] *
-                                   state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
+void SoftBody::index_vertices_by_node() {
+  const auto num_nodes = static_cast<std::size_t>(model_.num_nodes());
+  node_vertex_offset_.assign(num_nodes + 1, 0);
+  for (const int node : surface_node_) ++node_vertex_offset_[static_cast<std::size_t>(node) + 1];
+  for (std::size_t n = 0; n < num_nodes; ++n) node_vertex_offset_[n + 1] += node_vertex_offset_[n];
+  node_vertex_.resize(surface_node_.size());
+  std::vector<int> fill(node_vertex_offset_.begin(), node_vertex_offset_.end() - 1);
+  for (std::size_t v = 0; v + 1 < surface_offset_.size(); ++v) {
+    for (int e = surface_offset_[v]; e < surface_offset_[v + 1]; ++e) {
+      node_vertex_[static_cast<std::size_t>(fill[static_cast<std::size_t>(surface_node_[static_cast<std::size_t>(e)])]++)] =
+          static_cast<int>(v);
     }
   }
+  node_moved_.assign(num_nodes, 0);
+  vertex_stale_.assign(surface_offset_.size() - 1, 0);
+}
+
+void SoftBody::refresh_vertex(int v) {
+  surface_positions_.col(v).setZero();
+  for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
+    surface_positions_.col(v) +=
+        surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
+  }
+}
+
+void SoftBody::update_surface() {
+  const int vertices = static_cast<int>(surface_offset_.size()) - 1;
+  surface_positions_.resize(3, vertices);
+  for (int v = 0; v < vertices; ++v) refresh_vertex(v);
   for (const int node : moved_nodes_) node_moved_[static_cast<std::size_t>(node)] = 0;
   moved_nodes_.clear();
 }
@@ -112,13 +117,8 @@ void SoftBody::update_moved_surface() {
     node_moved_[static_cast<std::size_t>(node)] = 0;
   }
   moved_nodes_.clear();
-  // summed in the same order as update_surface(), so the same bits
   for (const int v : stale_vertices_) {
-    surface_positions_.col(v).setZero();
-    for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
-      surface_positions_.col(v) += surface_weight_[static_cast<std::size_t>(e)] *
-                                   state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
-    }
+    refresh_vertex(v);  // the same sums as update_surface(), so the same bits
     vertex_stale_[static_cast<std::size_t>(v)] = 0;
   }
 }

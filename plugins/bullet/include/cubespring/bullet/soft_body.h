@@ -121,6 +121,10 @@ class SoftBody {
   friend class World;
   friend class ContactProjector;
   SoftBody() = default;
+  /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
+  void index_vertices_by_node();
+  /// Contact-surface vertex v from its nodes.
+  void refresh_vertex(int v);
   /// Every contact-surface vertex from the nodes (after a step moved them all).
   void update_surface();
   /// Node n was moved by a contact: its vertices are stale until update_moved_surface().
