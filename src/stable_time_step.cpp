@@ -26,9 +26,9 @@ double gershgorin_bound(const SparseMatrix& stiffness, const Eigen::VectorXd& ma
 }
 
 // Largest eigenvalue of A = M^-1/2 K M^-1/2 by Lanczos without reorthogonalisation (only the
-// extreme Ritz value is wanted, and it converges first). Stops when the top Ritz value's residual
-// |beta_k s_k| (checked every 10 steps) is below 1e-4 of it; returns that Ritz value plus its residual, the largest value
-// an eigenvalue near it can have.
+// extreme Ritz value is wanted, and it converges first). Every 10 steps, the top Ritz value and its
+// residual |beta_k s_k|: stops when the residual is below 1e-4 of the value, and returns the value
+// plus its residual, the largest an eigenvalue near it can be.
 double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::VectorXd& mass) {
   const Eigen::Index n = stiffness.rows();
   Eigen::VectorXd inverse_sqrt_mass(n);
@@ -53,21 +53,18 @@ double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::Ve
     beta = w.norm();
     alphas.push_back(alpha);
     betas.push_back(beta);
-
     const int size = k + 1;
-    if (size % 10 != 0 && size != max_iterations && beta > 1e-14 * std::abs(alpha)) {
-      previous = q;
-      q = w / beta;
-      continue;
+    const bool exhausted = beta <= 1e-14 * std::abs(alpha);  // the Krylov space is invariant
+    if (size % 10 == 0 || size == max_iterations || exhausted) {
+      const Eigen::VectorXd diagonal = Eigen::Map<Eigen::VectorXd>(alphas.data(), size);
+      const Eigen::VectorXd off_diagonal = Eigen::Map<Eigen::VectorXd>(betas.data(), size - 1);
+      Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tridiagonal;
+      tridiagonal.computeFromTridiagonal(diagonal, off_diagonal, Eigen::ComputeEigenvectors);
+      const double ritz = tridiagonal.eigenvalues()[size - 1];
+      const double residual = std::abs(beta * tridiagonal.eigenvectors()(size - 1, size - 1));
+      estimate = ritz + residual;
+      if (residual <= 1e-4 * ritz || exhausted) break;
     }
-    Eigen::VectorXd diagonal = Eigen::Map<Eigen::VectorXd>(alphas.data(), size);
-    Eigen::VectorXd off_diagonal = Eigen::Map<Eigen::VectorXd>(betas.data(), size).head(size - 1);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> tridiagonal;
-    tridiagonal.computeFromTridiagonal(diagonal, off_diagonal, Eigen::ComputeEigenvectors);
-    const double ritz = tridiagonal.eigenvalues()[size - 1];
-    const double residual = std::abs(beta * tridiagonal.eigenvectors()(size - 1, size - 1));
-    estimate = ritz + residual;
-    if (residual <= 1e-4 * ritz || beta <= 1e-14 * std::abs(ritz)) break;  // converged, or exhausted the space
     previous = q;
     q = w / beta;
   }
