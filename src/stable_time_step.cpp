@@ -73,14 +73,6 @@ double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::Ve
 
 }  // namespace
 
-const char* frequency_bound_name(FrequencyBound bound) {
-  switch (bound) {
-    case FrequencyBound::kGershgorin: return "gershgorin";
-    case FrequencyBound::kLanczos: return "lanczos";
-  }
-  return "unknown";
-}
-
 double max_frequency(const Model& model, FrequencyBound bound) {
   StiffnessAssembler assembler(model);
   SparseMatrix stiffness;

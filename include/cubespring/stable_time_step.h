@@ -20,7 +20,6 @@ enum class FrequencyBound {
   /// 0.9 of this step a block anchored to a light dynamic body blew up in its tests.
   kLanczos,
 };
-const char* frequency_bound_name(FrequencyBound bound);
 
 /// The body's highest natural frequency omega_max [rad/s], found as `bound` says.
 double max_frequency(const Model& model, FrequencyBound bound = FrequencyBound::kGershgorin);
