@@ -56,6 +56,13 @@ int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const Eig
   return best;
 }
 
+// Weight of corner c, at offset (c & 1, c >> 1 & 1, c >> 2 & 1), at trilinear coordinates u.
+double trilinear_weight(int corner, const Eigen::Vector3d& u) {
+  double weight = 1.0;
+  for (int axis = 0; axis < 3; ++axis) weight *= ((corner >> axis) & 1) ? u[axis] : 1.0 - u[axis];
+  return weight;
+}
+
 }  // namespace
 
 Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
@@ -101,12 +108,23 @@ void embedded_positions(const Model& model, const Embedding& embedding, const Ei
     const Eigen::Vector3d u = embedding.vertex_local.col(v);
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     for (int corner = 0; corner < kCornersPerCell; ++corner) {
-      // corner c sits at offset (c & 1, c >> 1 & 1, c >> 2 & 1): weight prod of u or 1 - u
-      double weight = 1.0;
-      for (int axis = 0; axis < 3; ++axis) weight *= ((corner >> axis) & 1) ? u[axis] : 1.0 - u[axis];
-      position += weight * node_positions.col(corners[static_cast<std::size_t>(corner)]);
+      position += trilinear_weight(corner, u) * node_positions.col(corners[static_cast<std::size_t>(corner)]);
     }
     vertices.col(v) = position;
+  }
+}
+
+void embedded_values(const Model& model, const Embedding& embedding, const Eigen::VectorXd& node_values,
+                     Eigen::VectorXd& vertex_values) {
+  vertex_values.resize(embedding.num_vertices());
+  for (int v = 0; v < embedding.num_vertices(); ++v) {
+    const auto& corners = model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
+    const Eigen::Vector3d u = embedding.vertex_local.col(v);
+    double value = 0.0;
+    for (int corner = 0; corner < kCornersPerCell; ++corner) {
+      value += trilinear_weight(corner, u) * node_values[corners[static_cast<std::size_t>(corner)]];
+    }
+    vertex_values[v] = value;
   }
 }
 

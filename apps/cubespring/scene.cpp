@@ -175,7 +175,8 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
 }
 
 Status read_render(const JsonFields& fields, RenderSpec& render) {
-  if (Status s = fields.check_keys({"width", "height", "supersampling", "camera", "wireframe", "colour_map", "colour_range"}); !s) {
+  if (Status s = fields.check_keys({"width", "height", "supersampling", "camera", "wireframe", "colour_map", "colour_range",
+                                     "strain_range"}); !s) {
     return s;
   }
   if (Status s = fields.integer("width", render.width, 1, 8192); !s) return s;
@@ -196,12 +197,15 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
   if (Status s = fields.string("colour_map", colour_map); !s) return s;
   if (colour_map == "displacement") {
     render.colour_map = ColourMode::kDisplacement;
+  } else if (colour_map == "strain") {
+    render.colour_map = ColourMode::kStrain;
   } else if (colour_map == "none") {
     render.colour_map = ColourMode::kNone;
   } else {
-    return fields.error("colour_map", "must be \"displacement\" or \"none\", got \"" + colour_map + "\"");
+    return fields.error("colour_map", "must be \"displacement\", \"strain\" or \"none\", got \"" + colour_map + "\"");
   }
-  return fields.positive("colour_range", render.colour_range);
+  if (Status s = fields.positive("colour_range", render.colour_range); !s) return s;
+  return fields.positive("strain_range", render.strain_range);
 }
 
 Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& scene) {

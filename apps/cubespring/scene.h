@@ -75,7 +75,7 @@ struct ToolSpec {
   std::vector<Keyframe> keyframes;     ///< sorted by time
 };
 
-enum class ColourMode { kDisplacement, kNone };
+enum class ColourMode { kDisplacement, kStrain, kNone };
 
 struct RenderSpec {
   int width = 1280;
@@ -85,6 +85,7 @@ struct RenderSpec {
   bool wireframe = false;
   ColourMode colour_map = ColourMode::kDisplacement;
   double colour_range = 0.01;  ///< displacement shown at the top of the colour scale [m]
+  double strain_range = 0.2;   ///< equivalent strain shown at the top of the colour scale (colour_map "strain")
 };
 
 struct Scene {

@@ -7,6 +7,7 @@
 #include "cubespring/embedding.h"
 #include "cubespring/render/colour_map.h"
 #include "cubespring/render/wireframe.h"
+#include "cubespring/strain.h"
 #include "tool_motion.h"
 
 namespace cubespring::app {
@@ -40,14 +41,11 @@ Eigen::Matrix3Xd SceneFrames::organ_vertices(SceneWorld& world) {
   return vertices;
 }
 
-Result<Image> SceneFrames::render(SceneWorld& world, double t) {
-  if (Status s = renderer_.begin_frame(spec_.camera); !s) return s;
-
-  const Eigen::Matrix3Xd vertices = organ_vertices(world);
+Status SceneFrames::draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& vertices) {
   const Eigen::Matrix3Xi& triangles = world.organ_mesh().triangles;
   vertex_normals(vertices, triangles, organ_normals_scratch_);
+  const ColourMap map = ColourMap::viridis();
   if (spec_.colour_map == ColourMode::kDisplacement && rest_vertices_.cols() == vertices.cols()) {
-    const ColourMap map = ColourMap::viridis();
     const Eigen::VectorXd moved = displacement_magnitudes(rest_vertices_, vertices);
     if (Status s = renderer_.draw_mesh_coloured(vertices, organ_normals_scratch_, triangles,
                                                 map.colours(moved, 0.0, spec_.colour_range));
@@ -55,10 +53,28 @@ Result<Image> SceneFrames::render(SceneWorld& world, double t) {
       return s;
     }
     // millimetres read better than metres on a 5x7 font
-    if (Status s = renderer_.draw_legend(map, 0.0, 1000.0 * spec_.colour_range, "DISPLACEMENT [MM]"); !s) return s;
-  } else if (Status s = renderer_.draw_mesh(vertices, organ_normals_scratch_, triangles, kTissue); !s) {
-    return s;
+    return renderer_.draw_legend(map, 0.0, 1000.0 * spec_.colour_range, "DISPLACEMENT [MM]");
   }
+  if (spec_.colour_map == ColourMode::kStrain) {
+    const bullet::SoftBody& organ = world.organ();
+    const Eigen::VectorXd node_strains =
+        node_means_of_cells(organ.model(), cell_equivalent_strains(organ.model(), organ.state().positions));
+    Eigen::VectorXd vertex_strains;
+    embedded_values(organ.model(), organ.embedding(), node_strains, vertex_strains);
+    if (Status s = renderer_.draw_mesh_coloured(vertices, organ_normals_scratch_, triangles,
+                                                map.colours(vertex_strains, 0.0, spec_.strain_range));
+        !s) {
+      return s;
+    }
+    return renderer_.draw_legend(map, 0.0, 100.0 * spec_.strain_range, "STRAIN [%]");
+  }
+  return renderer_.draw_mesh(vertices, organ_normals_scratch_, triangles, kTissue);
+}
+
+Result<Image> SceneFrames::render(SceneWorld& world, double t) {
+  if (Status s = renderer_.begin_frame(spec_.camera); !s) return s;
+
+  if (Status s = draw_organ(world, organ_vertices(world)); !s) return s;
 
   if (spec_.wireframe) {
     Eigen::Matrix3Xd points;

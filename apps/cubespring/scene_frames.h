@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // Pictures of a running scene: the organ's visual surface (coloured by how far it moved since
-// t = 0, with a legend), the tools, the table, optionally the lattice.
+// t = 0 or by its strain, with a legend), the tools, the table, optionally the lattice.
 #pragma once
 
 #include <memory>
@@ -29,6 +29,8 @@ class SceneFrames {
 
  private:
   SceneFrames(Renderer renderer, const Scene& scene);
+  /// The organ's surface at `vertices`, coloured as the scene says, with its legend.
+  Status draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& vertices);
 
   Renderer renderer_;
   RenderSpec spec_;

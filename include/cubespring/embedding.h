@@ -34,6 +34,11 @@ Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual);
 void embedded_positions(const Model& model, const Embedding& embedding, const Eigen::Matrix3Xd& node_positions,
                         Eigen::Matrix3Xd& vertices);
 
+/// A per-node scalar field (one value per node, e.g. node_means_of_cells of cell strains) at each
+/// vertex, by the same trilinear weights as its position.
+void embedded_values(const Model& model, const Embedding& embedding, const Eigen::VectorXd& node_values,
+                     Eigen::VectorXd& vertex_values);
+
 /// Unit vertex normals: the area-weighted sum of the normals of the triangles around each vertex
 /// (counter-clockwise triangles give outward normals); zero for a vertex of no triangle.
 void vertex_normals(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, Eigen::Matrix3Xd& normals);

@@ -289,40 +289,42 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   EXPECT_EQ(corner_changed, 0) << "the table far from the probe is the same picture";
 }
 
+// A 4 x 4 x 2 cm block on z = 0 as an OBJ file, with 8 x 8 squares a face: contact acts on the
+// surface's vertices, so they must be as close as the cells.
+void write_block_obj(const fs::path& path) {
+  std::ofstream obj(path);
+  constexpr int kSquares = 8;
+  const auto at = [](int axis, int i) { return axis == 2 ? 0.02 * i / kSquares : -0.02 + 0.04 * i / kSquares; };
+  // each face: the axes u and v across it (u x v points out) and its fixed axis at index `side`
+  const std::array<std::array<int, 4>, 6> faces{{
+      {0, 1, 2, kSquares}, {1, 0, 2, 0}, {0, 2, 1, 0}, {2, 0, 1, kSquares}, {2, 1, 0, 0}, {1, 2, 0, kSquares}}};
+  int first = 1;
+  for (const auto& [u, v, w, side] : faces) {
+    for (int j = 0; j <= kSquares; ++j) {
+      for (int i = 0; i <= kSquares; ++i) {
+        std::array<double, 3> p{};
+        p[static_cast<std::size_t>(u)] = at(u, i);
+        p[static_cast<std::size_t>(v)] = at(v, j);
+        p[static_cast<std::size_t>(w)] = at(w, side);
+        obj << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+      }
+    }
+    for (int j = 0; j < kSquares; ++j) {
+      for (int i = 0; i < kSquares; ++i) {
+        const int a = first + j * (kSquares + 1) + i;
+        const int c = a + kSquares + 2;
+        obj << "f " << a << " " << a + 1 << " " << c << "\nf " << a << " " << c << " " << c - 1 << "\n";
+      }
+    }
+    first += (kSquares + 1) * (kSquares + 1);
+  }
+}
+
 // A capsule turned on its side by its key frames lies across a small block: it presses only if the
 // orientation (as a quaternion in one key frame, as an axis and angle in the other) turns it.
 TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
   const TempDir dir;
-  {
-    // a 4 x 4 x 2 cm block on z = 0 with 8 x 8 squares a face: contact acts on the surface's
-    // vertices, so they must be as close as the cells
-    std::ofstream obj(dir.path() / "block.obj");
-    constexpr int kSquares = 8;
-    const auto at = [](int axis, int i) { return axis == 2 ? 0.02 * i / kSquares : -0.02 + 0.04 * i / kSquares; };
-    // each face: the axes u and v across it (u x v points out) and its fixed axis at index `side`
-    const std::array<std::array<int, 4>, 6> faces{{
-        {0, 1, 2, kSquares}, {1, 0, 2, 0}, {0, 2, 1, 0}, {2, 0, 1, kSquares}, {2, 1, 0, 0}, {1, 2, 0, kSquares}}};
-    int first = 1;
-    for (const auto& [u, v, w, side] : faces) {
-      for (int j = 0; j <= kSquares; ++j) {
-        for (int i = 0; i <= kSquares; ++i) {
-          std::array<double, 3> p{};
-          p[static_cast<std::size_t>(u)] = at(u, i);
-          p[static_cast<std::size_t>(v)] = at(v, j);
-          p[static_cast<std::size_t>(w)] = at(w, side);
-          obj << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
-        }
-      }
-      for (int j = 0; j < kSquares; ++j) {
-        for (int i = 0; i < kSquares; ++i) {
-          const int a = first + j * (kSquares + 1) + i;
-          const int c = a + kSquares + 2;
-          obj << "f " << a << " " << a + 1 << " " << c << "\nf " << a << " " << c << " " << c - 1 << "\n";
-        }
-      }
-      first += (kSquares + 1) * (kSquares + 1);
-    }
-  }
+  write_block_obj(dir.path() / "block.obj");
   // the tip 6 cm to the left of the block's centre; turned 90 degrees about y, the shaft runs
   // along +x across the block with its underside 7 mm below the block's top
   std::ofstream(dir.path() / "scene.json") << R"({
@@ -345,6 +347,54 @@ TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
   EXPECT_GT(force_z, 0.1) << "the tissue pushes the bar up: " << last;
   // about the tip, 6 cm left of where the block pushes: torque_y = -0.06 m x force_z
   EXPECT_NEAR(std::stod(fields[7]), -0.06 * force_z, 0.1 * 0.06 * force_z) << last;
+}
+
+// colour_map "strain": the block's surface shows the bottom of the scale at rest and warms up around
+// a probe pressed into its top, not at its far corners (the unit tests check the strain values).
+TEST(DemoScene, StrainColoursShowWhereTheProbeStrainsTheTissue) {
+  constexpr int kSize = 128;
+  const TempDir dir;
+  write_block_obj(dir.path() / "block.obj");
+  // no gravity and no table: at t = 0 the block is unstrained; the probe ends 5 mm deep
+  std::ofstream(dir.path() / "scene.json") << R"({
+    "organ": {"mesh": "block.obj", "cell_size": 0.005, "fixed_regions": [{"lower": [-1, -1, -1], "upper": [1, 1, 0.001]}]},
+    "table": {"enabled": false}, "gravity": [0, 0, 0],
+    "tools": [{"name": "probe", "capsule": {"radius": 0.004, "length": 0.05}, "keyframes": [
+      {"time": 0.0, "position": [0, 0, 0.025]}, {"time": 0.3, "position": [0, 0, 0.015]}]}],
+    "settle_time": 0, "duration": 0.4, "frames": 2,
+    "render": {"width": 128, "height": 128, "colour_map": "strain", "strain_range": 0.1,
+               "camera": {"position": [0.0, -0.08, 0.12], "target": [0, 0, 0.01], "up": [0, 0, 1], "fov": 30}}
+  })";
+  const ToolRun run = run_tool("run " + (dir.path() / "scene.json").string() + " --out " + (dir.path() / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  const cubespring::Result<cubespring::Image> rest = cubespring::read_png((dir.path() / "out" / "frame_0000.png").string());
+  const cubespring::Result<cubespring::Image> pressed = cubespring::read_png((dir.path() / "out" / "frame_0001.png").string());
+  ASSERT_TRUE(rest.ok() && pressed.ok());
+
+  cubespring::Camera camera;
+  camera.position = Eigen::Vector3d(0.0, -0.08, 0.12);
+  camera.target = Eigen::Vector3d(0, 0, 0.01);
+  camera.vertical_fov_degrees = 30;
+  // viridis runs from blue-purple (green < blue) to yellow; its middle has green = blue
+  const auto warmth = [&](const cubespring::Image& image, const Eigen::Vector3d& point) {
+    const Eigen::Vector2d pixel = camera.project(point, kSize, kSize);
+    const auto* rgb = image.pixel(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()));
+    return int(rgb[1]) - int(rgb[2]);
+  };
+  constexpr double kTop = 0.02;
+  constexpr double kPi = 3.14159265358979;
+  // on the top face in front of the probe (the side the camera sees), 7 mm from its axis
+  for (const double degrees : {-130.0, -90.0, -50.0}) {
+    const double angle = degrees * kPi / 180.0;
+    const Eigen::Vector3d near(0.007 * std::cos(angle), 0.007 * std::sin(angle), kTop);
+    EXPECT_LT(warmth(*rest, near), 0) << "unstrained at " << degrees << " degrees";
+    EXPECT_GT(warmth(*pressed, near), 0) << "strained past mid-scale at " << degrees << " degrees";
+  }
+  for (const Eigen::Vector3d& far : {Eigen::Vector3d(-0.017, -0.017, kTop), Eigen::Vector3d(0.017, -0.017, kTop),
+                                    Eigen::Vector3d(0.0, -0.02, 0.008)}) {
+    EXPECT_LT(warmth(*rest, far), 0) << far.transpose();
+    EXPECT_LT(warmth(*pressed, far), 0) << "far from the probe the strain stays low: " << far.transpose();
+  }
 }
 
 // A scene file in a temporary folder, run; the tool must fail with a message naming the fault.
@@ -397,6 +447,9 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
       {"{\"render\": {\"wireframe\": \"yes\"}}", "\"wireframe\" in \"render\" must be true or false, got string"},
       {"{\"organ\": {\"model\": \"springs\"}}", "\"model\" in \"organ\" must be \"baudet2007\" or \"exact-bending\""},
       {"{\"time_step\": -1}", "\"time_step\" must be > 0, got -1"},
+      {"{\"render\": {\"colour_map\": \"stress\"}}",
+       "\"colour_map\" in \"render\" must be \"displacement\", \"strain\" or \"none\", got \"stress\""},
+      {"{\"render\": {\"strain_range\": 0}}", "\"strain_range\" in \"render\" must be > 0, got 0"},
       {"{\"organ\": {\"contact_offset\": -0.001}}", "\"contact_offset\" in \"organ\" must be >= 0, got -0.001"},
       {"{\"duration\": 1,\n \"duration\": 2}", "scene.json:2: duplicate key \"duration\""},
       {"{\"duration\": 1,\n}", "scene.json:2: JSON syntax error"},

@@ -76,6 +76,18 @@ TEST(Embedding, AffineMotionsOfTheLatticeMoveTheMeshByTheSameMap) {
   }
 }
 
+TEST(Embedding, NodeValuesInterpolateLikePositions) {
+  // trilinear weights reproduce a linear field exactly, in every cell and extrapolated outside
+  const EmbeddedSphere s = embedded_sphere();
+  const Eigen::Vector3d slope(2.0, -3.0, 0.5);
+  const Eigen::VectorXd node_values = (s.model.rest_positions.transpose() * slope).array() + 1.5;
+  Eigen::VectorXd vertex_values;
+  embedded_values(s.model, s.embedding, node_values, vertex_values);
+  const Eigen::VectorXd expected = (s.mesh.vertices.transpose() * slope).array() + 1.5;
+  ASSERT_EQ(vertex_values.size(), expected.size());
+  EXPECT_LE((vertex_values - expected).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 TEST(Embedding, NormalsPointOutAndTurnWithTheBody) {
   const EmbeddedSphere s = embedded_sphere();
   const Eigen::Vector3d centre(0.2, -0.1, 0.3);

@@ -1,0 +1,27 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// How much a body is strained, for colouring it: the equivalent (von Mises) strain of each cell
+// and its mean at the nodes.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "cubespring/model.h"
+
+/// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals. Strains are
+/// dimensionless.
+namespace cubespring {
+
+/// The equivalent strain of each cell at its centre, sqrt(2/3 dev(E) : dev(E)) with E the
+/// Green-Lagrange strain (F^T F - I) / 2 of the cell's mean edges, F = [e_x / hx, e_y / hy, e_z / hz]
+/// (the trilinear deformation gradient at the centre). Zero for any rigid motion; epsilon for a
+/// volume-preserving stretch by a small epsilon; (2/3)(1 + nu) epsilon for a small uniaxial
+/// stretch epsilon with lateral strain -nu epsilon; gamma / sqrt(3) for a small shear gamma.
+/// `positions` is (3 x num_nodes) [m]. Returns one value per cell, in Model::cell_nodes order.
+Eigen::VectorXd cell_equivalent_strains(const Model& model, const Eigen::Matrix3Xd& positions);
+
+/// Per-cell values averaged at each node over the cells that share it (a smooth field for
+/// interpolation); `cell_values` has one entry per cell.
+Eigen::VectorXd node_means_of_cells(const Model& model, const Eigen::VectorXd& cell_values);
+
+}  // namespace cubespring
