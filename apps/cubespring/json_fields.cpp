@@ -109,6 +109,14 @@ Status JsonFields::non_negative(const std::string& key, double& out) const {
   return {};
 }
 
+Status JsonFields::fraction(const std::string& key, double& out) const {
+  double value = out;
+  if (Status status = number(key, value); !status) return status;
+  if (has(key) && !(value >= 0.0 && value <= 1.0)) return error(key, "must be in [0, 1], got " + format(value));
+  out = value;
+  return {};
+}
+
 Status JsonFields::integer(const std::string& key, int& out, int min, int max) const {
   const json* value = member(key);
   if (value == nullptr) return {};

@@ -32,6 +32,7 @@ class JsonFields {
   Status number(const std::string& key, double& out) const;
   Status positive(const std::string& key, double& out) const;      ///< > 0
   Status non_negative(const std::string& key, double& out) const;  ///< >= 0
+  Status fraction(const std::string& key, double& out) const;      ///< in [0, 1]
   Status integer(const std::string& key, int& out, int min, int max) const;
   Status boolean(const std::string& key, bool& out) const;
   Status string(const std::string& key, std::string& out) const;

@@ -174,9 +174,32 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
   return {};
 }
 
+Status read_lights(const JsonFields& fields, RenderSpec& render) {
+  if (fields.has("lights")) {
+    Result<std::vector<JsonFields>> lights = fields.objects("lights");
+    if (!lights) return lights.status();
+    if (lights->size() > 8) {
+      return fields.error("lights", "has " + std::to_string(lights->size()) + " lights: at most 8 (OpenGL's fixed pipeline)");
+    }
+    render.lights.clear();
+    for (const JsonFields& entry : *lights) {
+      if (Status s = entry.check_keys({"direction", "colour"}); !s) return s;
+      Light light;
+      if (Status s = entry.vector3("direction", light.direction); !s) return s;
+      if (!(light.direction.norm() > 0.0)) return entry.error("direction", "must not be zero");
+      Eigen::Vector3d colour = light.colour.cast<double>();
+      if (Status s = entry.vector3("colour", colour); !s) return s;
+      if ((colour.array() < 0.0).any()) return entry.error("colour", "must have no negative channel");
+      light.colour = colour.cast<float>();
+      render.lights.push_back(light);
+    }
+  }
+  return fields.fraction("ambient", render.ambient);
+}
+
 Status read_render(const JsonFields& fields, RenderSpec& render) {
-  if (Status s = fields.check_keys({"width", "height", "supersampling", "camera", "wireframe", "colour_map", "colour_range",
-                                     "strain_range"}); !s) {
+  if (Status s = fields.check_keys({"width", "height", "supersampling", "camera", "lights", "ambient", "wireframe",
+                                     "colour_map", "colour_range", "strain_range"}); !s) {
     return s;
   }
   if (Status s = fields.integer("width", render.width, 1, 8192); !s) return s;
@@ -192,6 +215,7 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
     if (Status s = camera->positive("fov", render.camera.vertical_fov_degrees); !s) return s;
     if (Status s = validate(render.camera); !s) return camera->error_here("\"" + fields.name_of("camera") + "\": " + s.message());
   }
+  if (Status s = read_lights(fields, render); !s) return s;
   if (Status s = fields.boolean("wireframe", render.wireframe); !s) return s;
   std::string colour_map = "displacement";
   if (Status s = fields.string("colour_map", colour_map); !s) return s;

@@ -16,6 +16,7 @@
 #include "cubespring/lattice.h"
 #include "cubespring/material.h"
 #include "cubespring/render/camera.h"
+#include "cubespring/render/renderer.h"
 #include "cubespring/result.h"
 
 namespace cubespring::app {
@@ -82,6 +83,8 @@ struct RenderSpec {
   int height = 720;
   int supersampling = 2;
   Camera camera;
+  std::vector<Light> lights = default_lights();  ///< directional lights, at most 8
+  double ambient = 0.25;  ///< fraction of a surface's colour seen without any light, in [0, 1]
   bool wireframe = false;
   ColourMode colour_map = ColourMode::kDisplacement;
   double colour_range = 0.01;  ///< displacement shown at the top of the colour scale [m]

@@ -26,6 +26,8 @@ Result<SceneFrames> SceneFrames::create(const Scene& scene) {
   settings.width = scene.render.width;
   settings.height = scene.render.height;
   settings.supersampling = scene.render.supersampling;
+  settings.lights = scene.render.lights;
+  settings.ambient = static_cast<float>(scene.render.ambient);
   settings.floor = scene.table.enabled;
   settings.floor_height = scene.table.height;
   settings.floor_half_size = scene.table.half_size;

@@ -397,6 +397,47 @@ TEST(DemoScene, StrainColoursShowWhereTheProbeStrainsTheTissue) {
   }
 }
 
+// render.lights and render.ambient reach the renderer: a light shining down brightens the block's
+// top over its front face, one shining along +y the front over the top, and with no light and
+// full ambient every face shows the flat tissue colour.
+TEST(DemoScene, LightsFromTheSceneShadeTheFacesTheyFace) {
+  constexpr int kSize = 64;
+  const TempDir dir;
+  write_block_obj(dir.path() / "block.obj");
+  cubespring::Camera camera;
+  camera.position = Eigen::Vector3d(0.0, -0.08, 0.08);
+  camera.target = Eigen::Vector3d(0, 0, 0.01);
+  camera.vertical_fov_degrees = 40;
+  const auto render = [&](const std::string& name, const std::string& lighting) {
+    std::ofstream(dir.path() / (name + ".json")) << R"({
+      "organ": {"mesh": "block.obj", "cell_size": 0.01}, "table": {"enabled": false}, "gravity": [0, 0, 0],
+      "settle_time": 0, "duration": 0.01, "frames": 1,
+      "render": {"width": 64, "height": 64, "colour_map": "none", )" + lighting + R"(,
+                 "camera": {"position": [0.0, -0.08, 0.08], "target": [0, 0, 0.01], "fov": 40}}})";
+    const ToolRun run = run_tool("run " + (dir.path() / (name + ".json")).string() + " --out " + (dir.path() / name).string());
+    EXPECT_EQ(run.exit_code, 0) << run.out;
+    return cubespring::read_png((dir.path() / name / "frame_0000.png").string());
+  };
+  const auto rgb_at = [&](const cubespring::Image& image, const Eigen::Vector3d& point) {
+    const Eigen::Vector2d pixel = camera.project(point, kSize, kSize);
+    const auto* p = image.pixel(static_cast<int>(pixel.x()), static_cast<int>(pixel.y()));
+    return Eigen::Vector3i(p[0], p[1], p[2]);
+  };
+  const Eigen::Vector3d top(0.0, 0.0, 0.02);
+  const Eigen::Vector3d front(0.0, -0.02, 0.01);
+
+  const auto from_above = render("above", R"("lights": [{"direction": [0, 0, -1]}], "ambient": 0.2)");
+  const auto from_front = render("front", R"("lights": [{"direction": [0, 1, 0], "colour": [1, 1, 1]}], "ambient": 0.2)");
+  const auto unlit = render("unlit", R"("lights": [], "ambient": 1)");
+  ASSERT_TRUE(from_above.ok() && from_front.ok() && unlit.ok());
+  EXPECT_GT(rgb_at(*from_above, top).sum(), rgb_at(*from_above, front).sum() + 60);
+  EXPECT_GT(rgb_at(*from_front, front).sum(), rgb_at(*from_front, top).sum() + 60);
+  // the demo's flat tissue colour (0.55, 0.16, 0.13) in 8 bits
+  const Eigen::Vector3i tissue(140, 41, 33);
+  EXPECT_LE((rgb_at(*unlit, top) - tissue).cwiseAbs().maxCoeff(), 1) << rgb_at(*unlit, top).transpose();
+  EXPECT_LE((rgb_at(*unlit, front) - tissue).cwiseAbs().maxCoeff(), 1) << rgb_at(*unlit, front).transpose();
+}
+
 // A scene file in a temporary folder, run; the tool must fail with a message naming the fault.
 class SceneErrors : public ::testing::Test {
  protected:
@@ -450,6 +491,11 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
       {"{\"render\": {\"colour_map\": \"stress\"}}",
        "\"colour_map\" in \"render\" must be \"displacement\", \"strain\" or \"none\", got \"stress\""},
       {"{\"render\": {\"strain_range\": 0}}", "\"strain_range\" in \"render\" must be > 0, got 0"},
+      {"{\"render\": {\"ambient\": 1.5}}", "\"ambient\" in \"render\" must be in [0, 1], got 1.5"},
+      {"{\"render\": {\"lights\": [{\"direction\": [0, 0, 0]}]}}",
+       "\"direction\" in \"render.lights[0]\" must not be zero"},
+      {"{\"render\": {\"lights\": [{\"direction\": [0, 0, -1], \"colour\": [1, -1, 1]}]}}",
+       "\"colour\" in \"render.lights[0]\" must have no negative channel"},
       {"{\"organ\": {\"contact_offset\": -0.001}}", "\"contact_offset\" in \"organ\" must be >= 0, got -0.001"},
       {"{\"duration\": 1,\n \"duration\": 2}", "scene.json:2: duplicate key \"duration\""},
       {"{\"duration\": 1,\n}", "scene.json:2: JSON syntax error"},
