@@ -5,7 +5,8 @@
 //   1. springs: current vector, length, 1/length, length rate and the spring's own tension, in
 //               tiles whose square roots and divisions run two springs per SIMD instruction;
 //   2. cells:   mean edge strains -> correction tension per axis (section 3); signed volume from
-//               the body diagonals -> crushed-cell flag (section 5); twist forces (exact bending);
+//               the body diagonals -> crushed-cell flag (section 5); twist forces (exact bending)
+//               straight onto the cell's corners;
 //   3. crushed cells: inversion recovery;
 //   4. springs: total tension -> force on both ends, walking the springs grouped by their first
 //               node (they are sorted so): that node's sum stays in registers, the second node
@@ -140,12 +141,6 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
     ws.cell_crushed[c] = is_crushed;
     crushed += is_crushed;
 
-    if (model.has_twist) {
-      std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
-      for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(edges[e]);
-      twist_edge_forces(edge_vectors, size.x(), model.cell_twist_stiffness[c],
-                        ws.cell_edge_force.middleCols<kEdgesPerCell>(static_cast<Eigen::Index>(c) * kEdgesPerCell));
-    }
   }
   return crushed;
 }
@@ -160,27 +155,22 @@ inline double spring_tension(const Model& model, const ForceWorkspace& ws, int s
   return tension;
 }
 
-// Force on spring_nodes[s][0]; the other end gets its negative. The twist term adds non-central
-// but balanced forces on the same two ends; it is summed in the same walk over the spring's cells
-// as their correction tension.
-template <bool kWithTwist>
+// Force on spring_nodes[s][0]; the other end gets its negative.
 inline Eigen::Vector3d spring_force(const Model& model, const ForceWorkspace& ws, int s) {
-  if constexpr (!kWithTwist) {
-    return (spring_tension(model, ws, s) * ws.spring_inverse_length[s]) * ws.spring_vector.col(s);
-  } else {
-    double tension = ws.spring_own_tension[s];
-    Eigen::Vector3d twist = Eigen::Vector3d::Zero();
-    for (int e = model.spring_cell_offset[s]; e < model.spring_cell_offset[s + 1]; ++e) {
-      tension += ws.cell_tension.data()[model.spring_cell_tension[e]];
-      twist += ws.cell_edge_force.col(model.spring_cell_edge[e]);
-    }
-    return (tension * ws.spring_inverse_length[s]) * ws.spring_vector.col(s) + twist;
-  }
+  return (spring_tension(model, ws, s) * ws.spring_inverse_length[s]) * ws.spring_vector.col(s);
+}
+
+// The first cell whose lowest corner (corner 0) is node n or after it: cells are in grid order,
+// so their corner 0 nodes rise with the cell index.
+inline int first_cell_from_node(const Model& model, int n) {
+  const auto after = std::partition_point(model.cell_nodes.begin(), model.cell_nodes.end(),
+                                          [n](const std::array<int, kCornersPerCell>& corners) { return corners[0] < n; });
+  return static_cast<int>(after - model.cell_nodes.begin());
 }
 
 // Pass 4 over block b: scatters its springs' forces; each node past the previous block's halo is
 // complete once its own springs are done, and goes to finish(n), which returns a squared speed.
-template <bool kWithTwist, typename Finish>
+template <typename Finish>
 double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const Finish& finish) {
   const int begin = force_block_begin(model, b);
   const int end = force_block_end(model, b);
@@ -190,7 +180,7 @@ double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matri
   for (int n = begin; n < end; ++n) {
     Eigen::Vector3d first_node_sum = Eigen::Vector3d::Zero();
     for (int s = model.node_first_spring[n]; s < model.node_first_spring[n + 1]; ++s) {
-      const Eigen::Vector3d f = spring_force<kWithTwist>(model, ws, s);
+      const Eigen::Vector3d f = spring_force(model, ws, s);
       first_node_sum += f;
       const int j = model.spring_nodes[s][1];
       if (j < end) {
@@ -203,6 +193,29 @@ double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matri
     if (n >= settled) fastest_sq = faster(finish(n), fastest_sq);
   }
   return fastest_sq;
+}
+
+// Pass 2b (exact bending): the twist forces of cells [first, last), those whose corner 0 is in
+// block b, straight onto the block's nodes or its halo (a cell's corners are reached by its
+// diagonal from corner 0, so they lie in one or the other).
+void add_twist_forces(const Model& model, int b, int first, int last, const ForceWorkspace& ws,
+                      Eigen::Matrix3Xd& forces, Eigen::Matrix3Xd& halo) {
+  const int end = force_block_end(model, b);
+  for (int c = first; c < last; ++c) {
+    if (model.cell_twist_stiffness[c] == 0.0) continue;
+    std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
+    for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(model.cell_edges[c][e]);
+    const std::array<Eigen::Vector3d, kCornersPerCell> twist =
+        twist_corner_forces(edge_vectors, model.cell_size.x(), model.cell_twist_stiffness[c]);
+    for (int corner = 0; corner < kCornersPerCell; ++corner) {
+      const int j = model.cell_nodes[c][corner];
+      if (j < end) {
+        forces.col(j) += twist[corner];
+      } else {
+        halo.col(j - end) += twist[corner];
+      }
+    }
+  }
 }
 
 // The nodes of block b that the previous block's springs reach: their halo, then finish(n).
@@ -236,9 +249,8 @@ void apply_inversion_forces(const Model& model, const Eigen::Matrix3Xd& x, const
 
 void prepare(const Model& model, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
   const int blocks = num_force_blocks(model);
-  const Eigen::Index twist_columns = model.has_twist ? static_cast<Eigen::Index>(model.num_cells()) * kEdgesPerCell : 0;
   if (ws.spring_vector.cols() != model.num_springs() || ws.cell_tension.cols() != model.num_cells() ||
-      ws.cell_edge_force.cols() != twist_columns || static_cast<int>(ws.block_halo.size()) != blocks) {
+      static_cast<int>(ws.block_halo.size()) != blocks) {
     ws.resize(model);
   }
   for (int b = 0; b < blocks; ++b) {
@@ -255,7 +267,6 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
                    Eigen::Matrix3Xd& forces, const Finish& finish) {
   prepare(model, ws, forces);
   const int blocks = num_force_blocks(model);
-  const int num_cells = model.num_cells();
   const bool with_rate = options.damping && model.has_stiffness_damping;
   [[maybe_unused]] const int threads = std::max(1, std::min(options.threads, blocks));
 #pragma omp parallel num_threads(threads) if (threads > 1)
@@ -276,9 +287,11 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
     }
 #pragma omp for schedule(static)
     for (int b = 0; b < blocks; ++b) {
-      const long long cells = num_cells;
-      ws.block_crushed[b] = cell_pass(model, with_rate, static_cast<int>(cells * b / blocks),
-                                      static_cast<int>(cells * (b + 1) / blocks), ws);
+      // the cells whose corner 0 is in the block, so that their twist forces stay in its nodes
+      const int first_cell = first_cell_from_node(model, force_block_begin(model, b));
+      const int last_cell = first_cell_from_node(model, force_block_end(model, b));
+      ws.block_crushed[b] = cell_pass(model, with_rate, first_cell, last_cell, ws);
+      if constexpr (kWithTwist) add_twist_forces(model, b, first_cell, last_cell, ws, forces, ws.block_halo[b]);
     }
     // every thread finds the same count, so all or none enter the single (and its barrier)
     int crushed = 0;
@@ -288,7 +301,7 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
       apply_inversion_forces(model, state.positions, ws, forces);
     }
 #pragma omp for schedule(static)
-    for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = scatter_block<kWithTwist>(model, b, ws, forces, finish);
+    for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = scatter_block(model, b, ws, forces, finish);
 #pragma omp for schedule(static)
     for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = faster(settle_halo(model, b, ws, forces, finish), ws.block_fastest[b]);
   }
@@ -341,7 +354,6 @@ void ForceWorkspace::resize(const Model& model) {
   spring_tension.resize(num_springs);
   cell_tension.resize(3, model.num_cells());
   cell_crushed.resize(model.num_cells());
-  cell_edge_force.resize(3, model.has_twist ? static_cast<Eigen::Index>(model.num_cells()) * kEdgesPerCell : 0);
   const auto blocks = static_cast<std::size_t>(num_force_blocks(model));
   block_halo.resize(blocks);
   block_crushed.resize(blocks);

@@ -226,11 +226,10 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.spring_damping[s] = spring.damping;
     for (std::size_t e = spring.first_edge; e < spring.first_edge + spring.edge_count; ++e) {
       const EdgeRecord& edge = edges[e];
-      model.spring_cell_edge.push_back(edge.cell * kEdgesPerCell + edge.slot);
       model.spring_cell_tension.push_back(edge.cell * 3 + edge.slot / kEdgesPerAxis);
       model.cell_edges[edge.cell][edge.slot] = s;
     }
-    model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_edge.size());
+    model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_tension.size());
   }
 
   // diagonals of each cell, found by their end nodes

@@ -80,52 +80,45 @@ inline double twist_energy(const std::array<Eigen::Vector3d, kEdgesPerCell>& edg
   return energy;
 }
 
-/// The two face terms of each edge slot: faces[d][side] with the edge on that face's a (role 0)
-/// or c (role 1) pair, in the order twist_energy() adds them.
-struct EdgeTwistTerms {
-  std::array<int, 2> face;  // d * 2 + side
-  std::array<int, 2> role;
-};
-constexpr std::array<EdgeTwistTerms, kEdgesPerCell> make_edge_twist_terms() {
-  std::array<EdgeTwistTerms, kEdgesPerCell> terms{};
-  std::array<int, kEdgesPerCell> found{};
-  for (int d = 0; d < 3; ++d) {
-    for (int side = 0; side < 2; ++side) {
-      for (int t = 0; t < 2; ++t) {
-        for (int role = 0; role < 2; ++role) {
-          const TwistFace& face = kTwistFaces[d][side];
-          const int slot = role == 0 ? face.a_edges[t] : face.c_edges[t];
-          terms[slot].face[found[slot]] = d * 2 + side;
-          terms[slot].role[found[slot]] = role;
-          ++found[slot];
-        }
-      }
-    }
-  }
-  return terms;
+/// The twist forces of the two faces normal to axis d on their corners (see twist_corner_forces);
+/// d is a template argument so that every corner index is a constant.
+template <int d>
+inline void add_twist_face_forces(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges, double h, double k,
+                                  std::array<Eigen::Vector3d, kCornersPerCell>& corner) {
+  constexpr int a = d == 0 ? 1 : 0;
+  constexpr int c = d == 2 ? 1 : 2;
+  const FaceMeans lower = face_means(kTwistFaces[d][0], edges);
+  const FaceMeans upper = face_means(kTwistFaces[d][1], edges);
+  const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
+  const double coefficient = 0.5 * k * h * w;
+  // lower face (side 0): coefficient -q; upper face (side 1): +q
+  const Eigen::Vector3d lower_sum = coefficient * (lower.a + lower.c);
+  const Eigen::Vector3d lower_difference = coefficient * (lower.a - lower.c);
+  corner[0] -= lower_sum;
+  corner[(1 << a) | (1 << c)] += lower_sum;
+  corner[1 << a] -= lower_difference;
+  corner[1 << c] += lower_difference;
+  constexpr int up = 1 << d;
+  const Eigen::Vector3d upper_sum = coefficient * (upper.a + upper.c);
+  const Eigen::Vector3d upper_difference = coefficient * (upper.a - upper.c);
+  corner[up] += upper_sum;
+  corner[up | (1 << a) | (1 << c)] -= upper_sum;
+  corner[up | (1 << a)] += upper_difference;
+  corner[up | (1 << c)] -= upper_difference;
 }
-inline constexpr std::array<EdgeTwistTerms, kEdgesPerCell> kEdgeTwistTerms = make_edge_twist_terms();
 
-/// The forces of twist_energy() written once per edge slot: out.col(slot) = force on that edge's
-/// lower corner [N]. Same terms in the same order, so the same bits, without summing in memory.
-template <typename Out>
-inline void twist_edge_forces(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges, double h, double k, Out&& out) {
-  const auto& faces = twist_faces();
-  std::array<std::array<Eigen::Vector3d, 2>, 6> face_force;  // [d * 2 + side][role]
-  for (int d = 0; d < 3; ++d) {
-    const FaceMeans lower = face_means(faces[d][0], edges);
-    const FaceMeans upper = face_means(faces[d][1], edges);
-    const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
-    for (int side = 0; side < 2; ++side) {
-      const FaceMeans& means = side == 0 ? lower : upper;
-      const double coefficient = (side == 0 ? -0.5 : 0.5) * k * h * w;
-      face_force[d * 2 + side] = {coefficient * means.c, coefficient * means.a};
-    }
-  }
-  for (int slot = 0; slot < kEdgesPerCell; ++slot) {
-    const EdgeTwistTerms& terms = kEdgeTwistTerms[slot];
-    out.col(slot) = face_force[terms.face[0]][terms.role[0]] + face_force[terms.face[1]][terms.role[1]];
-  }
+/// The forces of twist_energy() gathered on the cell's 8 corners [N], face by face: on a face with
+/// means a, c and coefficient q, the a-edges' lower corners get q c and their upper ones -q c,
+/// the c-edges' q a and -q a, so its corner 0 gets q (a + c), the opposite corner -q (a + c), the
+/// corner one step along a q (a - c), and the one a step along c -q (a - c).
+inline std::array<Eigen::Vector3d, kCornersPerCell> twist_corner_forces(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges,
+                                                                        double h, double k) {
+  std::array<Eigen::Vector3d, kCornersPerCell> corner;
+  corner.fill(Eigen::Vector3d::Zero());
+  add_twist_face_forces<0>(edges, h, k, corner);
+  add_twist_face_forces<1>(edges, h, k, corner);
+  add_twist_face_forces<2>(edges, h, k, corner);
+  return corner;
 }
 
 }  // namespace cubespring

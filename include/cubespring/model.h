@@ -42,10 +42,9 @@ struct Model {
   std::vector<double> spring_stiffness;    ///< [N/m], summed over the cells that share the spring
   std::vector<double> spring_damping;      ///< beta times stiffness, summed over cells [N s/m]
   /// Cells whose correction acts on spring s: entries spring_cell_offset[s] .. [s+1]-1 of
-  /// spring_cell_edge, each cell * 12 + the edge's slot in that cell (edges only; diagonals have none).
+  /// spring_cell_tension, each cell * 3 + the edge's axis in that cell, where that cell's
+  /// correction tension for it is (edges only; diagonals have none).
   std::vector<int> spring_cell_offset;
-  std::vector<int> spring_cell_edge;
-  /// The same links as cell * 3 + the edge's axis: where the cell's correction tension for it is.
   std::vector<int> spring_cell_tension;
 
   // cells (num_cells)
