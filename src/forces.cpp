@@ -100,11 +100,37 @@ void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen:
   for (int s = tile; s < end; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
 }
 
+// Where the cell pass puts twist forces (exact bending): the forces of the block whose node range
+// ends at `end`, and its halo past it. A cell goes with the block of its corner 0; its other
+// corners are reached by its diagonal from corner 0, so they lie in the block or its halo.
+struct TwistTarget {
+  Eigen::Matrix3Xd& forces;
+  Eigen::Matrix3Xd& halo;
+  int end;
+};
+
+// The twist forces of cell c on its corners.
+inline void add_twist_forces(const Model& model, int c, const ForceWorkspace& ws, const TwistTarget& target) {
+  std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
+  for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(model.cell_edges[c][e]);
+  const std::array<Eigen::Vector3d, kCornersPerCell> twist =
+      twist_corner_forces(edge_vectors, model.cell_size.x(), model.cell_twist_stiffness[c]);
+  for (int corner = 0; corner < kCornersPerCell; ++corner) {
+    const int j = model.cell_nodes[c][corner];
+    if (j < target.end) {
+      target.forces.col(j) += twist[corner];
+    } else {
+      target.halo.col(j - target.end) += twist[corner];
+    }
+  }
+}
+
 // Pass 2 over cells [begin, end). Correction tension T_a = V0 (D (eps + beta d(eps)/dt))_a / (4 a0)
 // on each a-edge of a cell, and the crushed flag from the signed volume of the mean edge vectors,
 // which the diagonals give: sum_k s_a(k) x_k = sum over diagonals c -> 7-c of s_a(7-c) (x_{7-c} - x_c).
-// Returns the number of crushed cells.
-int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws) {
+// With a twist target, also the twist forces (exact bending). Returns the number of crushed cells.
+int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws,
+              const TwistTarget* twist = nullptr) {
   const Eigen::Vector3d& size = model.cell_size;
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * size.array()).inverse();
   const Eigen::Array3d tension_per_stress = size.prod() * inverse_edge_sum;
@@ -141,6 +167,7 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
     ws.cell_crushed[c] = is_crushed;
     crushed += is_crushed;
 
+    if (twist != nullptr && model.cell_twist_stiffness[c] != 0.0) add_twist_forces(model, c, ws, *twist);
   }
   return crushed;
 }
@@ -193,29 +220,6 @@ double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matri
     if (n >= settled) fastest_sq = faster(finish(n), fastest_sq);
   }
   return fastest_sq;
-}
-
-// Pass 2b (exact bending): the twist forces of cells [first, last), those whose corner 0 is in
-// block b, straight onto the block's nodes or its halo (a cell's corners are reached by its
-// diagonal from corner 0, so they lie in one or the other).
-void add_twist_forces(const Model& model, int b, int first, int last, const ForceWorkspace& ws,
-                      Eigen::Matrix3Xd& forces, Eigen::Matrix3Xd& halo) {
-  const int end = force_block_end(model, b);
-  for (int c = first; c < last; ++c) {
-    if (model.cell_twist_stiffness[c] == 0.0) continue;
-    std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
-    for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(model.cell_edges[c][e]);
-    const std::array<Eigen::Vector3d, kCornersPerCell> twist =
-        twist_corner_forces(edge_vectors, model.cell_size.x(), model.cell_twist_stiffness[c]);
-    for (int corner = 0; corner < kCornersPerCell; ++corner) {
-      const int j = model.cell_nodes[c][corner];
-      if (j < end) {
-        forces.col(j) += twist[corner];
-      } else {
-        halo.col(j - end) += twist[corner];
-      }
-    }
-  }
 }
 
 // The nodes of block b that the previous block's springs reach: their halo, then finish(n).
@@ -290,8 +294,8 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
       // the cells whose corner 0 is in the block, so that their twist forces stay in its nodes
       const int first_cell = first_cell_from_node(model, force_block_begin(model, b));
       const int last_cell = first_cell_from_node(model, force_block_end(model, b));
-      ws.block_crushed[b] = cell_pass(model, with_rate, first_cell, last_cell, ws);
-      if constexpr (kWithTwist) add_twist_forces(model, b, first_cell, last_cell, ws, forces, ws.block_halo[b]);
+      const TwistTarget twist{forces, ws.block_halo[b], force_block_end(model, b)};
+      ws.block_crushed[b] = cell_pass(model, with_rate, first_cell, last_cell, ws, kWithTwist ? &twist : nullptr);
     }
     // every thread finds the same count, so all or none enter the single (and its barrier)
     int crushed = 0;
