@@ -157,6 +157,29 @@ TEST(Cli, VoxelizeTableNamesTheParts) {
   EXPECT_NE(run.out.find("voxel volume"), std::string::npos) << run.out;
 }
 
+// A short core bench run: one row per body with the documented JSON keys, the bodies' sizes counted
+// by hand (a 2x2x2 box: 27 nodes, 54 edges + 32 inner diagonals), every timed column a positive time.
+TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
+  const nlohmann::json rows = run_json("bench --sizes '2,2,2;3,1,1' --sphere 0 --min-seconds 0.01 --implicit-max-cells 100 --json");
+  ASSERT_TRUE(rows.is_array());
+  ASSERT_EQ(rows.size(), 2u);
+  const nlohmann::json& box = rows[0];
+  EXPECT_EQ(box["body"], "2x2x2");
+  EXPECT_EQ(box["cells"], 8);
+  EXPECT_EQ(box["nodes"], 27);
+  EXPECT_EQ(box["springs"], 86);
+  EXPECT_EQ(rows[1]["springs"], 3 * 4 + 4 * 2 + 4 * 2 + 4 * 3) << "3x1x1: 12 x-edges, 8 y-, 8 z-edges, 12 diagonals";
+  for (const nlohmann::json& row : rows) {
+    EXPECT_GT(row["bare_spring_pass_ms"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["symplectic_euler_ms"]["1"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["symplectic_euler_ms"]["2"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["velocity_verlet_ms"]["1"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["exact_bending_symplectic_euler_ms"]["1"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["implicit_euler_ms"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["implicit_cg_iterations"].get<int>(), 0) << row.dump();
+  }
+}
+
 #ifdef CUBESPRING_HAS_BULLET
 // A short bench-bullet run: every engine's row, the explicit cubespring row once per thread count
 // with the same tip to the bit (threads do not change results), and its JSON keys.
