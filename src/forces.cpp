@@ -12,9 +12,10 @@
 //               node (they are sorted so): that node's sum stays in registers, the second node
 //               gets one scattered write. A node whose force is then complete gets its damping
 //               and loads at once, and the explicit step moves it (still in cache).
-// The springs are cut into blocks of consecutive first nodes (force_blocks.h). A block's springs
-// that end in the next block write to a halo of their own, added once every block is done; the
-// blocks depend on the body alone, so the sums, and the results, do not depend on the thread count.
+// The springs are cut into blocks of consecutive first nodes (force_blocks.h), the cells with them
+// (by their corner 0). A block's springs and cells that reach into the next block write to a halo
+// of their own, added once every block is done; the blocks depend on the body alone, so the sums,
+// and the results, do not depend on the thread count.
 #include "cubespring/forces.h"
 
 #include <algorithm>
@@ -100,13 +101,14 @@ void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen:
   for (int s = tile; s < end; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
 }
 
-// Where the cell pass puts twist forces (exact bending): the forces of the block whose node range
-// ends at `end`, and its halo past it. A cell goes with the block of its corner 0; its other
-// corners are reached by its diagonal from corner 0, so they lie in the block or its halo.
+// Where the cell pass puts twist forces (exact bending): the forces of the block whose nodes end
+// at `block_end`, and its halo past it. A cell goes with the block of its corner 0. Node numbers
+// rise along every grid axis, so corner 7 has the cell's highest number, and the cell's 0-7
+// diagonal is a spring of corner 0: every corner lies in the block or within its halo.
 struct TwistTarget {
   Eigen::Matrix3Xd& forces;
   Eigen::Matrix3Xd& halo;
-  int end;
+  int block_end;
 };
 
 // The twist forces of cell c on its corners.
@@ -117,10 +119,10 @@ inline void add_twist_forces(const Model& model, int c, const ForceWorkspace& ws
       twist_corner_forces(edge_vectors, model.cell_size.x(), model.cell_twist_stiffness[c]);
   for (int corner = 0; corner < kCornersPerCell; ++corner) {
     const int j = model.cell_nodes[c][corner];
-    if (j < target.end) {
+    if (j < target.block_end) {
       target.forces.col(j) += twist[corner];
     } else {
-      target.halo.col(j - target.end) += twist[corner];
+      target.halo.col(j - target.block_end) += twist[corner];
     }
   }
 }

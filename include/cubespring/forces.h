@@ -35,7 +35,7 @@ struct ForceWorkspace {
   std::vector<double> spring_tension;     ///< total tension (spring + correction), filled for the stiffness [N]
   Eigen::Matrix3Xd cell_tension;          ///< correction tension on each axis' edges [N]
   std::vector<std::uint8_t> cell_crushed; ///< 1 where the inversion recovery acts
-  std::vector<Eigen::Matrix3Xd> block_halo;  ///< forces of each block's springs on the next block's nodes [N]
+  std::vector<Eigen::Matrix3Xd> block_halo;  ///< forces of each block's springs and cells on the next block's nodes [N]
   std::vector<int> block_crushed;         ///< crushed cells found by each block
   std::vector<double> block_fastest;      ///< largest squared speed each block gave a node [m^2/s^2]
   void resize(const Model& model);

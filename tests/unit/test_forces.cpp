@@ -164,6 +164,37 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
   }
 }
 
+// The blocks' halos lose nothing: a body cut into blocks gets the forces of the same body as one
+// block (no halo at all) to rounding, springs, correction, twist and inversion alike.
+TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+    LatticeDesc desc = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
+    desc.model = cell_model;
+    Result<Model> built = build_model(desc);
+    ASSERT_TRUE(built.ok()) << built.message();
+    const Model& blocked = built.value();
+    ASSERT_GE(blocked.force_block_nodes.size(), 3u) << "too few springs for 2 blocks";
+    Model whole = blocked;
+    whole.force_block_nodes.clear();  // one block of every node
+    whole.force_block_reach.clear();
+    State state = rest_state(blocked);
+    state.positions = test::perturbed(blocked, 1e-3);
+    state.velocities = test::perturbed(blocked, 0.1) - blocked.rest_positions;
+    const int c = blocked.num_cells() / 2;  // a crushed cell too
+    for (int corner = 4; corner < 8; ++corner) state.positions(2, blocked.cell_nodes[c][corner]) -= 0.015;
+    Loads loads;
+    loads.gravity = {0, 0, -9.81};
+    ForceWorkspace blocked_ws, whole_ws;
+    Eigen::Matrix3Xd by_blocks, at_once;
+    compute_forces(blocked, state, loads, ForceOptions{true, 2}, blocked_ws, by_blocks);
+    compute_forces(whole, state, loads, ForceOptions{true, 1}, whole_ws, at_once);
+    const double scale = at_once.cwiseAbs().maxCoeff();
+    EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale) << cell_model_name(cell_model);
+  }
+}
+
 TEST(Forces, GravityPullsEveryMass) {
   const Model model = test::box_model({2, 2, 2}, notes_material(0.3));
   Loads loads;
