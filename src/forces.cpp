@@ -24,6 +24,7 @@
 #include "cell_geometry.h"
 #include "force_blocks.h"
 #include "force_passes.h"
+#include "grid_forces.h"
 #include "twist.h"
 
 namespace cubespring {
@@ -334,9 +335,40 @@ struct NodeLoads {
   }
 };
 
+// The forces of a body on its dense grid (grid_forces.h), then the inversion recovery and
+// finish(n) of every node, the nodes cut into the force blocks. Returns what run_passes does.
+template <typename Finish>
+double grid_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
+                   Eigen::Matrix3Xd& forces, const Finish& finish) {
+  prepare(model, ws, forces);
+  const bool with_rate = options.damping && model.has_stiffness_damping;
+  const int crushed = grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces);
+  if (crushed > 0) {
+    const double crushed_volume = kCrushedVolumeFraction * model.rest_cell_volume();
+    for (int c = 0; c < model.num_cells(); ++c) {
+      ws.cell_crushed[c] = cell_signed_volume(model, state.positions, c) < crushed_volume;
+    }
+    apply_inversion_forces(model, state.positions, ws, forces);
+  }
+  const int blocks = num_force_blocks(model);
+  [[maybe_unused]] const int threads = std::max(1, std::min(options.threads, blocks));
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+  for (int b = 0; b < blocks; ++b) {
+    double fastest_sq = 0.0;
+    for (int n = force_block_begin(model, b); n < force_block_end(model, b); ++n) {
+      fastest_sq = faster(finish(n), fastest_sq);
+    }
+    ws.block_fastest[b] = fastest_sq;
+  }
+  double fastest_sq = 0.0;
+  for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);
+  return fastest_sq;
+}
+
 template <typename Finish>
 double force_sweep(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish) {
+  if (model.grid_layout) return grid_passes(model, state, options, ws, forces, finish);
   return model.has_twist ? run_passes<true>(model, state, options, ws, forces, finish)
                          : run_passes<false>(model, state, options, ws, forces, finish);
 }

@@ -10,6 +10,7 @@
 
 #include "cubespring/forces.h"
 #include "force_blocks.h"
+#include "grid_layout.h"
 
 namespace cubespring {
 namespace {
@@ -250,6 +251,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   }
 
   split_force_blocks(model);
+  model.grid_layout = build_grid_layout(model);
   return model;
 }
 

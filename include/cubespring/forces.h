@@ -38,6 +38,7 @@ struct ForceWorkspace {
   std::vector<Eigen::Matrix3Xd> block_halo;  ///< forces of each block's springs and cells on the next block's nodes [N]
   std::vector<int> block_crushed;         ///< crushed cells found by each block
   std::vector<double> block_fastest;      ///< largest squared speed each block gave a node [m^2/s^2]
+  std::vector<double> grid_arrays;        ///< arrays of the grid passes (src/grid_forces.h)
   void resize(const Model& model);
 };
 

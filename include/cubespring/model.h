@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,6 +22,8 @@ namespace cubespring {
 inline constexpr int kCornersPerCell = 8;
 inline constexpr int kEdgesPerCell = 12;
 inline constexpr int kEdgesPerAxis = 4;
+
+struct GridLayout;  // internal: src/grid_layout.h
 
 /// The constant part of a simulated body: topology, rest state, masses and stiffnesses. Built once
 /// by build_model(); the time-varying part lives in State. Arrays are flat, one entry per item.
@@ -76,6 +79,12 @@ struct Model {
   std::vector<int> force_block_nodes;
   std::vector<int> force_block_reach;
 
+  /// The body on the dense grid of its bounding box, which the explicit force passes use instead
+  /// of the spring lists when the body fills at least half the box (docs/data-layout.md); null
+  /// otherwise, and for the exact-bending model. Built by build_model() from the arrays above, it
+  /// keeps its own copy of the stiffnesses: after changing them, call update_grid_layout().
+  std::shared_ptr<const GridLayout> grid_layout;
+
   int num_nodes() const { return static_cast<int>(rest_positions.cols()); }
   int num_springs() const { return static_cast<int>(spring_nodes.size()); }
   int num_cells() const { return static_cast<int>(cell_nodes.size()); }
@@ -95,6 +104,10 @@ struct Model {
 /// Validates the description (cell size, materials, cell indices, the model's validity for the
 /// cell shape) and builds the model. Errors name the value at fault and the allowed range.
 Result<Model> build_model(const LatticeDesc& desc);
+
+/// Rebuilds model.grid_layout from the model's arrays, after a change to a built model's
+/// stiffnesses, damping or corrections.
+void update_grid_layout(Model& model);
 
 /// Per-cell spring stiffnesses and correction of one material and cell shape
 /// (docs/model-baudet2007.md, sections 2-4).

@@ -102,6 +102,7 @@ TEST(Forces, CorrectionSizeAndSignUnderUniaxialStress) {
     const Model model = test::box_model({1, 1, 1}, notes_material(nu));
     Model springs_only = model;
     for (auto& d : springs_only.cell_correction) d.setZero();
+    update_grid_layout(springs_only);
     const double eps = 1e-7;
     const Eigen::Vector3d strain(eps, -nu * eps, -nu * eps);
     const Eigen::Matrix3Xd x = model.rest_positions + strain.asDiagonal() * model.rest_positions;
@@ -143,7 +144,9 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
     for (const bool crushed : {false, true}) {
       Result<Model> built = build_model(desc);
       ASSERT_TRUE(built.ok()) << built.message();
-      const Model& model = built.value();
+      for (const bool lists : {false, true}) {  // the grid passes where the body has them, and the lists
+      Model model = built.value();
+      if (lists) model.grid_layout.reset();
       ASSERT_GE(model.force_block_nodes.size(), 3u) << name << ": too few springs for 2 blocks";
       State state = rest_state(model);
       state.positions = test::perturbed(model, 1e-3);
@@ -159,7 +162,9 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
       Eigen::Matrix3Xd one, two;
       compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
       compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
-      EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0) << name << (crushed ? ", crushed" : "");
+      EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0)
+          << name << (crushed ? ", crushed" : "") << (lists ? ", spring lists" : "");
+      }
     }
   }
 }
@@ -174,7 +179,8 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
     desc.model = cell_model;
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
-    const Model& blocked = built.value();
+    Model blocked = built.value();
+    blocked.grid_layout.reset();  // the spring lists, which the blocks cut
     ASSERT_GE(blocked.force_block_nodes.size(), 3u) << "too few springs for 2 blocks";
     Model whole = blocked;
     whole.force_block_nodes.clear();  // one block of every node
@@ -193,6 +199,72 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
     const double scale = at_once.cwiseAbs().maxCoeff();
     EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale) << cell_model_name(cell_model);
   }
+}
+
+// The grid passes (bodies that fill at least half their bounding box) add the same springs,
+// correction, damping and inversion recovery as the spring lists, to rounding: a box, a box with
+// holes and a stiff inclusion of another material, each with a crushed cell and with a spring
+// of zero length (no direction: no force).
+TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  damped.mass_damping = 2.0;
+  Material stiff = notes_material(0.45);
+  stiff.young_modulus *= 20.0;
+  LatticeDesc holes = box_lattice({9, 7, 6}, Eigen::Vector3d(0.01, 0.012, 0.008), damped);
+  holes.materials.push_back(stiff);
+  std::vector<Eigen::Vector3i> kept;
+  for (const Eigen::Vector3i& cell : holes.cells) {
+    if ((cell.x() * 7 + cell.y() * 3 + cell.z() * 5) % 4 == 0 && cell.x() > 0) continue;  // about a quarter gone
+    kept.push_back(cell);
+    holes.cell_material.push_back(cell.x() >= 3 && cell.x() <= 5 && cell.y() >= 2 && cell.y() <= 4 ? 1 : 0);
+  }
+  holes.cells = kept;
+  const std::vector<std::pair<const char*, LatticeDesc>> bodies{
+      {"box", box_lattice({7, 5, 4}, Eigen::Vector3d::Constant(0.01), damped)}, {"holes and inclusion", holes}};
+  for (const auto& [name, desc] : bodies) {
+    Result<Model> built = build_model(desc);
+    ASSERT_TRUE(built.ok()) << built.message();
+    const Model& grid = built.value();
+    ASSERT_NE(grid.grid_layout, nullptr) << name;
+    Model lists = grid;
+    lists.grid_layout.reset();
+    for (const bool crushed : {false, true}) {
+      State state = rest_state(grid);
+      state.positions = test::perturbed(grid, 1e-3);
+      state.velocities = test::perturbed(grid, 0.1) - grid.rest_positions;
+      if (crushed) {
+        const int c = grid.num_cells() / 2;
+        for (int corner = 4; corner < 8; ++corner) state.positions(2, grid.cell_nodes[c][corner]) -= 0.015;
+        ASSERT_LT(cell_signed_volume(grid, state.positions, c), 0.0) << name;
+        const auto& ends = grid.spring_nodes[grid.num_springs() / 3];
+        state.positions.col(ends[1]) = state.positions.col(ends[0]);
+      }
+      Loads loads;
+      loads.gravity = {0, 0, -9.81};
+      ForceWorkspace grid_ws, lists_ws;
+      Eigen::Matrix3Xd by_grid, by_lists;
+      compute_forces(grid, state, loads, ForceOptions{true, 1}, grid_ws, by_grid);
+      compute_forces(lists, state, loads, ForceOptions{true, 1}, lists_ws, by_lists);
+      ASSERT_TRUE(by_grid.allFinite()) << name;
+      const double scale = by_lists.cwiseAbs().maxCoeff();
+      EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale) << name << (crushed ? ", crushed" : "");
+    }
+  }
+}
+
+// Which bodies the grid passes take: those that fill at least half their box, without twist.
+TEST(Forces, GridPassesTakeOnlyBodiesThatFillHalfTheirBox) {
+  LatticeDesc diagonal_line;
+  diagonal_line.cell_size.setConstant(0.01);
+  diagonal_line.materials = {notes_material(0.3)};
+  for (int i = 0; i < 4; ++i) diagonal_line.cells.push_back({i, i, 0});  // 4 of 64 cells of its box
+  ASSERT_TRUE(build_model(diagonal_line).ok());
+  EXPECT_EQ(build_model(diagonal_line).value().grid_layout, nullptr);
+  LatticeDesc exact = box_lattice({3, 2, 2}, Eigen::Vector3d::Constant(0.01), notes_material(0.3));
+  exact.model = CellModel::kExactBending;
+  EXPECT_EQ(build_model(exact).value().grid_layout, nullptr);
+  EXPECT_NE(test::box_model({3, 2, 2}, notes_material(0.3)).grid_layout, nullptr);
 }
 
 TEST(Forces, GravityPullsEveryMass) {

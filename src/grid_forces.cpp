@@ -1,0 +1,370 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Four passes over the grid's points, each a loop over whole z-layers of contiguous points that
+// the compiler vectorises (compiled with -fopenmp-simd, -fno-math-errno and
+// -fno-trapping-math, src/CMakeLists.txt):
+//   1. springs, family by family: vector d, length, length rate, own tension; the diagonals
+//      (no correction) their force at once, the edges their unit vector;
+//   2. cells: mean edge strains -> correction tension per axis (docs/model-baudet2007.md
+//      section 3); signed volume from the diagonals -> crushed cells (section 5);
+//   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
+//   4. points: force = sum over families of the force of the springs that start there minus that
+//      of those that end there (a gather: no two points write the same place, so threads share
+//      nothing and the sums do not depend on the thread count).
+// The passes run z-layer by z-layer, each as soon as its inputs are there, so that the arrays of
+// a few layers are all the cache holds (all layers at once spill out of L2 from 32x8x8 on).
+#include "grid_forces.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cubespring/forces.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace cubespring {
+namespace {
+
+// The passes are built for AVX-512 and AVX2 beside the baseline, and the loader picks the one the
+// CPU runs. Every variant gives the same bits: the loops are lane by lane, with no sums across
+// lanes and no fused multiply-adds (-ffp-contract=off, CMakeLists.txt).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define CUBESPRING_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define CUBESPRING_VECTOR_CLONES
+#endif
+
+// Springs shorter than this fraction of their rest length have no direction and give no force
+// (as in forces.cpp).
+constexpr double kDegenerateLengthFraction = 1e-12;
+
+// Scratch arrays, each padded by grid.padding points on both sides.
+enum Slot : int {
+  kPosition = 0,                       // x, y, z
+  kVelocity = 3,                       // x, y, z
+  kForce = 6,                          // x, y, z
+  kCellTension = 9,                    // x, y, z
+  // per family x, y, z: the spring's force on its first end (edges: the unit vector until pass 3)
+  kFamilyForce = 12,
+  kDiagonalVector = kFamilyForce + 3 * kSpringFamilies,  // x, y, z per diagonal
+  kEdgeLength = kDiagonalVector + 3 * (kSpringFamilies - kEdgeFamilies),
+  kEdgeRate = kEdgeLength + kEdgeFamilies,
+  kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
+  kSlots = kEdgeOwnTension + kEdgeFamilies
+};
+
+class Arrays {
+ public:
+  Arrays(const GridLayout& grid, std::vector<double>& scratch)
+      : stride_(static_cast<std::size_t>(grid.num_points + 2 * grid.padding)), padding_(grid.padding) {
+    const std::size_t size = stride_ * kSlots;
+    if (scratch.size() != size) {
+      scratch.assign(size, 0.0);  // the padding and the points outside the body stay as set here
+      base_ = scratch.data();
+      for (int axis = 0; axis < 3; ++axis) {
+        double* position = (*this)[kPosition + axis];
+        for (int p = 0; p < grid.num_points; ++p) position[p] = grid.rest_points(axis, p);
+      }
+    }
+    base_ = scratch.data();
+  }
+  double* operator[](int slot) const { return base_ + stride_ * static_cast<std::size_t>(slot) + padding_; }
+
+ private:
+  std::size_t stride_;
+  int padding_;
+  double* base_ = nullptr;
+};
+
+// The points of z-layer `slab` whose first `rows` y-rows a loop covers.
+struct Range {
+  int begin, end;
+};
+inline Range layer_range(const GridLayout& grid, int slab, int rows) {
+  const int begin = slab * grid.stride_z;
+  return {begin, begin + rows * grid.stride_y};
+}
+
+// Pass 1 for family f on one z-layer.
+template <bool kWithRate, bool kDiagonal>
+CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const Arrays& a) {
+  const SpringFamily& family = grid.families[f];
+  const Range range = layer_range(grid, slab, family.rows);
+  const double* __restrict x = a[kPosition];
+  const double* __restrict y = a[kPosition + 1];
+  const double* __restrict z = a[kPosition + 2];
+  const double* __restrict vx = a[kVelocity];
+  const double* __restrict vy = a[kVelocity + 1];
+  const double* __restrict vz = a[kVelocity + 2];
+  double* __restrict fx = a[kFamilyForce + 3 * f];
+  double* __restrict fy = a[kFamilyForce + 3 * f + 1];
+  double* __restrict fz = a[kFamilyForce + 3 * f + 2];
+  // diagonals keep their vector (for the crushed test), edges their length, rate and own tension
+  const int vector = kDiagonalVector + 3 * (kDiagonal ? f - kEdgeFamilies : 0);
+  double* __restrict dx = a[vector];
+  double* __restrict dy = a[vector + 1];
+  double* __restrict dz = a[vector + 2];
+  const int e = kDiagonal ? 0 : f;
+  double* __restrict length_out = a[kEdgeLength + e];
+  double* __restrict rate_out = a[kEdgeRate + e];
+  double* __restrict own_out = a[kEdgeOwnTension + e];
+  const double* __restrict stiffness = family.stiffness.data();
+  const double* __restrict damping = kWithRate ? family.damping.data() : nullptr;
+  const double rest = family.rest_length;
+  const double degenerate = kDegenerateLengthFraction * rest;
+  const int from = family.from, to = family.to;
+#pragma omp simd
+  for (int g = range.begin; g < range.end; ++g) {
+    const double ex = x[g + to] - x[g + from];
+    const double ey = y[g + to] - y[g + from];
+    const double ez = z[g + to] - z[g + from];
+    const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
+    const double inverse = length > degenerate ? 1.0 / length : 0.0;
+    double own = stiffness[g] * (length - rest);
+    if constexpr (kWithRate) {
+      const double rate = ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey +
+                           (vz[g + to] - vz[g + from]) * ez) * inverse;
+      own += damping[g] * rate;
+      if constexpr (!kDiagonal) rate_out[g] = rate;
+    }
+    if constexpr (kDiagonal) {
+      dx[g] = ex;
+      dy[g] = ey;
+      dz[g] = ez;
+      const double q = own * inverse;
+      fx[g] = q * ex;
+      fy[g] = q * ey;
+      fz[g] = q * ez;
+    } else {
+      fx[g] = ex * inverse;
+      fy[g] = ey * inverse;
+      fz[g] = ez * inverse;
+      length_out[g] = length;
+      own_out[g] = own;
+    }
+  }
+}
+
+template <bool kWithRate>
+void measure_springs(const GridLayout& grid, int f, int slab, const Arrays& a) {
+  if (slab >= grid.families[f].slabs) return;
+  if (f < kEdgeFamilies) {
+    measure_family<kWithRate, false>(grid, f, slab, a);
+  } else {
+    measure_family<kWithRate, true>(grid, f, slab, a);
+  }
+}
+
+// Sum over the 4 a-edges of the cell at g of values v of the edge family a: the a-edges start
+// at corners 0, (1 << b), (1 << c), both (b, c the other axes), in that order (as in forces.cpp).
+inline double edge_sum(const double* v, int g, int step_b, int step_c) {
+  return (v[g] + v[g + step_b]) + (v[g + step_c] + v[g + step_b + step_c]);
+}
+
+// Pass 2 on one z-layer of cells; returns its crushed cells.
+template <bool kWithRate>
+CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const Arrays& a) {
+  const Range range = layer_range(grid, slab, grid.cell_rows);
+  const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
+  const Eigen::Array3d tension_per_stress = grid.cell_size.prod() * inverse_edge_sum;
+  const double ix = inverse_edge_sum.x(), iy = inverse_edge_sum.y(), iz = inverse_edge_sum.z();
+  const double tx = tension_per_stress.x(), ty = tension_per_stress.y(), tz = tension_per_stress.z();
+  const double crushed_volume_64 = 64.0 * kCrushedVolumeFraction * grid.cell_size.prod();
+  const int sy = grid.stride_y, sz = grid.stride_z;
+  const double* __restrict lx = a[kEdgeLength];
+  const double* __restrict ly = a[kEdgeLength + 1];
+  const double* __restrict lz = a[kEdgeLength + 2];
+  const double* __restrict rx = a[kEdgeRate];
+  const double* __restrict ry = a[kEdgeRate + 1];
+  const double* __restrict rz = a[kEdgeRate + 2];
+  const double* __restrict dxx = grid.correction[0].data();
+  const double* __restrict dyy = grid.correction[1].data();
+  const double* __restrict dzz = grid.correction[2].data();
+  const double* __restrict dxy = grid.correction[3].data();
+  const double* __restrict dxz = grid.correction[4].data();
+  const double* __restrict dyz = grid.correction[5].data();
+  const double* __restrict beta = kWithRate ? grid.cell_beta.data() : nullptr;
+  const double* __restrict occupied = grid.cell_occupied.data();
+  double* __restrict tension_x = a[kCellTension];
+  double* __restrict tension_y = a[kCellTension + 1];
+  double* __restrict tension_z = a[kCellTension + 2];
+  // the diagonals' vectors, diagonal k = 0..3, component x, y, z
+  const int diagonal = kDiagonalVector;
+  const double* __restrict d0x = a[diagonal];
+  const double* __restrict d0y = a[diagonal + 1];
+  const double* __restrict d0z = a[diagonal + 2];
+  const double* __restrict d1x = a[diagonal + 3];
+  const double* __restrict d1y = a[diagonal + 4];
+  const double* __restrict d1z = a[diagonal + 5];
+  const double* __restrict d2x = a[diagonal + 6];
+  const double* __restrict d2y = a[diagonal + 7];
+  const double* __restrict d2z = a[diagonal + 8];
+  const double* __restrict d3x = a[diagonal + 9];
+  const double* __restrict d3y = a[diagonal + 10];
+  const double* __restrict d3z = a[diagonal + 11];
+  int crushed = 0;
+#pragma omp simd reduction(+ : crushed)
+  for (int g = range.begin; g < range.end; ++g) {
+    double ex = edge_sum(lx, g, sy, sz) * ix - 1.0;
+    double ey = edge_sum(ly, g, 1, sz) * iy - 1.0;
+    double ez = edge_sum(lz, g, 1, sy) * iz - 1.0;
+    if constexpr (kWithRate) {
+      ex += beta[g] * (edge_sum(rx, g, sy, sz) * ix);
+      ey += beta[g] * (edge_sum(ry, g, 1, sz) * iy);
+      ez += beta[g] * (edge_sum(rz, g, 1, sy) * iz);
+    }
+    tension_x[g] = tx * (dxx[g] * ex + dxy[g] * ey + dxz[g] * ez);
+    tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
+    tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
+
+    // 4 x each mean edge vector from the diagonals, as in forces.cpp:
+    // x: + - + -, y: + + - -, z: + + + +
+    const double mxx = (d0x[g] - d1x[g]) + (d2x[g] - d3x[g]);
+    const double mxy = (d0y[g] - d1y[g]) + (d2y[g] - d3y[g]);
+    const double mxz = (d0z[g] - d1z[g]) + (d2z[g] - d3z[g]);
+    const double myx = (d0x[g] + d1x[g]) - (d2x[g] + d3x[g]);
+    const double myy = (d0y[g] + d1y[g]) - (d2y[g] + d3y[g]);
+    const double myz = (d0z[g] + d1z[g]) - (d2z[g] + d3z[g]);
+    const double mzx = (d0x[g] + d1x[g]) + (d2x[g] + d3x[g]);
+    const double mzy = (d0y[g] + d1y[g]) + (d2y[g] + d3y[g]);
+    const double mzz = (d0z[g] + d1z[g]) + (d2z[g] + d3z[g]);
+    const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
+    crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
+  }
+  return crushed;
+}
+
+// Pass 3 for edge family f on one z-layer: the edge at g belongs to the cells at g, g - b, g - c,
+// g - b - c (b, c the steps of the other two axes).
+CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, int slab, const Arrays& a) {
+  const SpringFamily& family = grid.families[f];
+  if (slab >= family.slabs) return;
+  const Range range = layer_range(grid, slab, family.rows);
+  const int steps[3] = {1, grid.stride_y, grid.stride_z};
+  const int b = steps[(f + 1) % 3], c = steps[(f + 2) % 3];
+  const double* __restrict tension = a[kCellTension + f];
+  const double* __restrict own = a[kEdgeOwnTension + f];
+  double* __restrict fx = a[kFamilyForce + 3 * f];  // the unit vector, made the force
+  double* __restrict fy = a[kFamilyForce + 3 * f + 1];
+  double* __restrict fz = a[kFamilyForce + 3 * f + 2];
+#pragma omp simd
+  for (int g = range.begin; g < range.end; ++g) {
+    const double total = own[g] + ((tension[g] + tension[g - b]) + (tension[g - c] + tension[g - b - c]));
+    fx[g] *= total;
+    fy[g] *= total;
+    fz[g] *= total;
+  }
+}
+
+// Pass 4 on one z-layer of points: each family's springs that start at g (at g - from) pull
+// g towards their other end; those that end at g (at g - to) pull it back.
+CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, const Arrays& a) {
+  const Range range = layer_range(grid, slab, grid.points.y());
+  int from[kSpringFamilies], to[kSpringFamilies];
+  for (int f = 0; f < kSpringFamilies; ++f) {
+    from[f] = grid.families[f].from;
+    to[f] = grid.families[f].to;
+  }
+  for (int axis = 0; axis < 3; ++axis) {
+    const double* spring_force[kSpringFamilies];
+    for (int f = 0; f < kSpringFamilies; ++f) spring_force[f] = a[kFamilyForce + 3 * f + axis];
+    double* __restrict force = a[kForce + axis];
+#pragma omp simd
+    for (int g = range.begin; g < range.end; ++g) {
+      double sum = 0.0;
+#pragma GCC unroll 7
+      for (int f = 0; f < kSpringFamilies; ++f) sum += spring_force[f][g - from[f]] - spring_force[f][g - to[f]];
+      force[g] = sum;
+    }
+  }
+}
+
+// The passes of one z-layer each, in the order a layer's inputs become ready.
+struct LayerPasses {
+  const GridLayout& grid;
+  const Arrays& a;
+  bool with_rate;
+
+  void measure(int slab) const {
+    for (int f = 0; f < kSpringFamilies; ++f) {
+      if (with_rate) {
+        measure_springs<true>(grid, f, slab, a);
+      } else {
+        measure_springs<false>(grid, f, slab, a);
+      }
+    }
+  }
+  int cells(int slab) const {  // needs measure(slab) and measure(slab + 1)
+    if (slab >= grid.cell_slabs) return 0;
+    return with_rate ? cell_pass<true>(grid, slab, a) : cell_pass<false>(grid, slab, a);
+  }
+  void edge_tensions(int slab) const {  // needs cells(slab) and cells(slab - 1)
+    for (int f = 0; f < kEdgeFamilies; ++f) edge_tension_pass(grid, f, slab, a);
+  }
+  void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1
+};
+
+// The z-layers [begin, end) of chunk `chunk` of `chunks`, about equal.
+Range chunk_layers(int layers, int chunk, int chunks) {
+  return {layers * chunk / chunks, layers * (chunk + 1) / chunks};
+}
+
+}  // namespace
+
+int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
+                       std::vector<double>& scratch, Eigen::Matrix3Xd& forces) {
+  const Arrays a(grid, scratch);
+  const int num_nodes = static_cast<int>(grid.point_of_node.size());
+  if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
+  const int slabs = grid.points.z();
+  int crushed = 0;
+  [[maybe_unused]] const int team = std::max(1, std::min(threads, slabs));
+#pragma omp parallel num_threads(team) if (team > 1) reduction(+ : crushed)
+  {
+#pragma omp for schedule(static)
+    for (int n = 0; n < num_nodes; ++n) {
+      const int g = grid.point_of_node[n];
+      for (int axis = 0; axis < 3; ++axis) a[kPosition + axis][g] = state.positions(axis, n);
+      if (with_rate) {
+        for (int axis = 0; axis < 3; ++axis) a[kVelocity + axis][g] = state.velocities(axis, n);
+      }
+    }
+    // Each thread takes a chunk of z-layers and runs the passes layer after layer, so that a layer
+    // is still in cache when the next pass reads it. A chunk's first layer needs the layer before
+    // it (another chunk's last) for its edge tensions, and so do the gathers of its first two
+    // layers: they wait for the second barrier.
+    const LayerPasses passes{grid, a, with_rate};
+    int chunk = 0, chunks = 1;
+#ifdef _OPENMP
+    chunk = omp_get_thread_num();
+    chunks = omp_get_num_threads();
+#endif
+    const Range layers = chunk_layers(slabs, chunk, chunks);
+    const bool first_chunk = chunk == 0;
+    passes.measure(layers.begin);
+#pragma omp barrier
+    for (int slab = layers.begin; slab < layers.end; ++slab) {
+      if (slab + 1 < layers.end) passes.measure(slab + 1);
+      crushed += passes.cells(slab);
+      if (first_chunk || slab > layers.begin) passes.edge_tensions(slab);
+      if (first_chunk || slab > layers.begin + 1) passes.gather(slab);
+    }
+#pragma omp barrier
+    if (!first_chunk) {
+      passes.edge_tensions(layers.begin);
+      passes.gather(layers.begin);
+      if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
+    }
+#pragma omp barrier
+#pragma omp for schedule(static)
+    for (int n = 0; n < num_nodes; ++n) {
+      const int g = grid.point_of_node[n];
+      for (int axis = 0; axis < 3; ++axis) forces(axis, n) = a[kForce + axis][g];
+    }
+  }
+  return crushed;
+}
+
+}  // namespace cubespring

@@ -1,0 +1,117 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "grid_layout.h"
+
+#include <cmath>
+
+namespace cubespring {
+namespace {
+
+// Grid step of corner c of a cell (model.h: bit a of c is the offset along axis a).
+Eigen::Vector3i corner_step(int corner) { return {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1}; }
+
+// The family of a spring from its two nodes' grid step, -1 if no family has it.
+int family_of_step(const Eigen::Vector3i& step) {
+  for (int axis = 0; axis < 3; ++axis) {
+    if (step == Eigen::Vector3i::Unit(axis)) return axis;
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (step == corner_step(7 - k) - corner_step(k)) return kEdgeFamilies + k;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
+  if (model.has_twist || model.num_cells() == 0 ||
+      static_cast<int>(model.cell_grid_index.size()) != model.num_cells() ||
+      static_cast<int>(model.node_grid_index.size()) != model.num_nodes()) {
+    return nullptr;
+  }
+  Eigen::Vector3i lower = model.cell_grid_index[0], upper = lower;
+  for (const Eigen::Vector3i& cell : model.cell_grid_index) {
+    lower = lower.cwiseMin(cell);
+    upper = upper.cwiseMax(cell);
+  }
+  const Eigen::Vector3i cells = upper - lower + Eigen::Vector3i::Ones();
+  const double box_cells = static_cast<double>(cells.x()) * cells.y() * cells.z();
+  if (model.num_cells() < kMinGridFill * box_cells) return nullptr;
+
+  auto layout = std::make_shared<GridLayout>();
+  GridLayout& grid = *layout;
+  grid.first_node = lower;
+  grid.points = cells + Eigen::Vector3i::Ones();
+  grid.cell_size = model.cell_size;
+  grid.stride_y = grid.points.x();
+  grid.stride_z = grid.points.x() * grid.points.y();
+  grid.num_points = grid.stride_z * grid.points.z();
+  grid.padding = grid.stride_z + grid.stride_y + 1;
+  const auto size = static_cast<std::size_t>(grid.num_points);
+
+  grid.rest_points.resize(3, grid.num_points);
+  for (int z = 0; z < grid.points.z(); ++z) {
+    for (int y = 0; y < grid.points.y(); ++y) {
+      for (int x = 0; x < grid.points.x(); ++x) {
+        const Eigen::Vector3i index = lower + Eigen::Vector3i(x, y, z);
+        grid.rest_points.col(grid.point(index)) = model.origin + index.cast<double>().cwiseProduct(model.cell_size);
+      }
+    }
+  }
+  grid.point_of_node.resize(model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) grid.point_of_node[n] = grid.point(model.node_grid_index[n]);
+
+  const int step_of_axis[3] = {1, grid.stride_y, grid.stride_z};
+  for (int f = 0; f < kSpringFamilies; ++f) {
+    SpringFamily& family = grid.families[f];
+    if (f < kEdgeFamilies) {
+      family.to = step_of_axis[f];
+      family.rest_length = model.cell_size[f];
+      family.rows = f == 1 ? cells.y() : grid.points.y();
+      family.slabs = f == 2 ? cells.z() : grid.points.z();
+    } else {
+      const int k = f - kEdgeFamilies;
+      const Eigen::Vector3i from = corner_step(k), to = corner_step(7 - k);
+      family.from = from.x() + grid.stride_y * from.y() + grid.stride_z * from.z();
+      family.to = to.x() + grid.stride_y * to.y() + grid.stride_z * to.z();
+      family.rest_length = model.cell_size.norm();
+      family.rows = cells.y();
+      family.slabs = cells.z();
+    }
+    family.stiffness.assign(size, 0.0);
+    if (model.has_stiffness_damping) family.damping.assign(size, 0.0);
+  }
+  for (int s = 0; s < model.num_springs(); ++s) {
+    const auto& ends = model.spring_nodes[s];
+    const Eigen::Vector3i first = model.node_grid_index[ends[0]];
+    const int f = family_of_step(model.node_grid_index[ends[1]] - first);
+    if (f < 0) return nullptr;
+    SpringFamily& family = grid.families[f];
+    if (std::abs(model.spring_rest_length[s] - family.rest_length) > 1e-12 * family.rest_length) return nullptr;
+    // edges are indexed by their first node, diagonals by their cell's corner 0
+    const int point = grid.point(first) - family.from;
+    family.stiffness[point] = model.spring_stiffness[s];
+    if (model.has_stiffness_damping) family.damping[point] = model.spring_damping[s];
+  }
+
+  for (auto& coefficient : grid.correction) coefficient.assign(size, 0.0);
+  grid.cell_occupied.assign(size, 0.0);
+  if (model.has_stiffness_damping) grid.cell_beta.assign(size, 0.0);
+  grid.cell_rows = cells.y();
+  grid.cell_slabs = cells.z();
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const int point = grid.point(model.cell_grid_index[c]);
+    const Eigen::Matrix3d& d = model.cell_correction[c];
+    const double coefficients[6] = {d(0, 0), d(1, 1), d(2, 2), d(0, 1), d(0, 2), d(1, 2)};
+    for (int i = 0; i < 6; ++i) grid.correction[i][point] = coefficients[i];
+    grid.cell_occupied[point] = 1.0;
+    if (model.has_stiffness_damping) {
+      grid.cell_beta[point] = model.materials[model.cell_material[c]].stiffness_damping;
+    }
+  }
+  return layout;
+}
+
+void update_grid_layout(Model& model) { model.grid_layout = build_grid_layout(model); }
+
+}  // namespace cubespring

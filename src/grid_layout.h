@@ -1,0 +1,66 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The body laid out on the dense grid of its bounding box, for the structured force passes
+// (grid_forces.h; docs/data-layout.md, "Dense bodies: the grid passes"). Springs are found by
+// index arithmetic, so the passes run over contiguous ranges the compiler vectorises; points of
+// the box outside the body carry zero stiffness.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "cubespring/model.h"
+
+namespace cubespring {
+
+/// Springs of one direction: those from point g + from to point g + to, for the points g of
+/// `slabs` z-layers, each its first `rows` y-rows of the grid (whole rows, every x).
+/// Families 0-2 are the x, y and z edges (indexed by their first node), 3-6 the body diagonals
+/// from corner k to corner 7 - k of the cell whose corner 0 is g.
+struct SpringFamily {
+  int from = 0, to = 0;
+  int rows = 0, slabs = 0;
+  double rest_length = 0;           ///< the same for every spring of the family [m]
+  std::vector<double> stiffness;    ///< per point [N/m]; 0 where the body has no such spring
+  std::vector<double> damping;      ///< beta times stiffness [N s/m]; empty without stiffness damping
+};
+inline constexpr int kEdgeFamilies = 3;
+inline constexpr int kSpringFamilies = 7;
+
+struct GridLayout {
+  Eigen::Vector3i first_node{0, 0, 0};  ///< grid index of point 0
+  Eigen::Vector3i points{0, 0, 0};      ///< grid points along x, y, z (cells + 1)
+  Eigen::Vector3d cell_size{0, 0, 0};   ///< [m]
+  int stride_y = 0, stride_z = 0;       ///< point index steps along y and z
+  int num_points = 0;
+  /// Every scratch array has this many points on each side beyond the grid, so that a spring or a
+  /// cell at any point may read its neighbours without bounds checks.
+  int padding = 0;
+  std::vector<int> point_of_node;       ///< model node -> grid point
+  Eigen::Matrix3Xd rest_points;         ///< rest position of every point [m]
+  std::array<SpringFamily, kSpringFamilies> families;
+
+  // cells, indexed by the point of their corner 0 (zero outside the body)
+  std::array<std::vector<double>, 6> correction;  ///< D: xx, yy, zz, xy, xz, yz [Pa]
+  std::vector<double> cell_beta;        ///< the material's beta [s]; empty without stiffness damping
+  std::vector<double> cell_occupied;    ///< 1 for a cell of the body, else 0
+  int cell_rows = 0, cell_slabs = 0;    ///< cells per x-row are whole rows too
+
+  int point(const Eigen::Vector3i& index) const {
+    const Eigen::Vector3i local = index - first_node;
+    return local.x() + stride_y * local.y() + stride_z * local.z();
+  }
+};
+
+/// Bodies that fill less of their bounding box than this use the spring lists instead: the grid
+/// passes spend their work on every point of the box.
+inline constexpr double kMinGridFill = 0.5;
+
+/// The grid layout of a built model, or null when the model does not suit it (twist terms, a box
+/// filled less than kMinGridFill, or cells whose springs are not the lattice's).
+std::shared_ptr<const GridLayout> build_grid_layout(const Model& model);
+
+}  // namespace cubespring
