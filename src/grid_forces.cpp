@@ -3,10 +3,10 @@
 // Four passes over the grid's points, each a loop over whole z-layers of contiguous points that
 // the compiler vectorises (compiled with -fopenmp-simd, -fno-math-errno and
 // -fno-trapping-math, src/CMakeLists.txt):
-//   1. springs, family by family: vector d, length, length rate, own tension; the diagonals
-//      (no correction) their force at once, the edges their unit vector;
+//   1. springs, family by family: length, length rate, own tension; the diagonals (no
+//      correction) their force at once, the edges their unit vector;
 //   2. cells: mean edge strains -> correction tension per axis (docs/model-baudet2007.md
-//      section 3); signed volume from the diagonals -> crushed cells (section 5);
+//      section 3); signed volume of the mean edge vectors -> crushed cells (section 5);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads share
@@ -48,8 +48,7 @@ enum Slot : int {
   kCellTension = 9,                    // x, y, z
   // per family x, y, z: the spring's force on its first end (edges: the unit vector until pass 3)
   kFamilyForce = 12,
-  kDiagonalVector = kFamilyForce + 3 * kSpringFamilies,  // x, y, z per diagonal
-  kEdgeLength = kDiagonalVector + 3 * (kSpringFamilies - kEdgeFamilies),
+  kEdgeLength = kFamilyForce + 3 * kSpringFamilies,
   kEdgeRate = kEdgeLength + kEdgeFamilies,
   kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
   kSlots = kEdgeOwnTension + kEdgeFamilies
@@ -101,11 +100,7 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
   double* __restrict fx = a[kFamilyForce + 3 * f];
   double* __restrict fy = a[kFamilyForce + 3 * f + 1];
   double* __restrict fz = a[kFamilyForce + 3 * f + 2];
-  // diagonals keep their vector (for the crushed test), edges their length, rate and own tension
-  const int vector = kDiagonalVector + 3 * (kDiagonal ? f - kEdgeFamilies : 0);
-  double* __restrict dx = a[vector];
-  double* __restrict dy = a[vector + 1];
-  double* __restrict dz = a[vector + 2];
+  // edges keep their length, rate and own tension for the cells
   const int e = kDiagonal ? 0 : f;
   double* __restrict length_out = a[kEdgeLength + e];
   double* __restrict rate_out = a[kEdgeRate + e];
@@ -130,9 +125,6 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
       if constexpr (!kDiagonal) rate_out[g] = rate;
     }
     if constexpr (kDiagonal) {
-      dx[g] = ex;
-      dy[g] = ey;
-      dz[g] = ez;
       const double q = own * inverse;
       fx[g] = q * ex;
       fy[g] = q * ey;
@@ -190,20 +182,9 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
   double* __restrict tension_x = a[kCellTension];
   double* __restrict tension_y = a[kCellTension + 1];
   double* __restrict tension_z = a[kCellTension + 2];
-  // the diagonals' vectors, diagonal k = 0..3, component x, y, z
-  const int diagonal = kDiagonalVector;
-  const double* __restrict d0x = a[diagonal];
-  const double* __restrict d0y = a[diagonal + 1];
-  const double* __restrict d0z = a[diagonal + 2];
-  const double* __restrict d1x = a[diagonal + 3];
-  const double* __restrict d1y = a[diagonal + 4];
-  const double* __restrict d1z = a[diagonal + 5];
-  const double* __restrict d2x = a[diagonal + 6];
-  const double* __restrict d2y = a[diagonal + 7];
-  const double* __restrict d2z = a[diagonal + 8];
-  const double* __restrict d3x = a[diagonal + 9];
-  const double* __restrict d3y = a[diagonal + 10];
-  const double* __restrict d3z = a[diagonal + 11];
+  // the corners' positions, corner c at g + step(c) (model.h)
+  const double* position[3] = {a[kPosition], a[kPosition + 1], a[kPosition + 2]};
+  const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};
   int crushed = 0;
 #pragma omp simd reduction(+ : crushed)
   for (int g = range.begin; g < range.end; ++g) {
@@ -219,17 +200,20 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
     tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
     tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
 
-    // 4 x each mean edge vector from the diagonals, as in forces.cpp:
-    // x: + - + -, y: + + - -, z: + + + +
-    const double mxx = (d0x[g] - d1x[g]) + (d2x[g] - d3x[g]);
-    const double mxy = (d0y[g] - d1y[g]) + (d2y[g] - d3y[g]);
-    const double mxz = (d0z[g] - d1z[g]) + (d2z[g] - d3z[g]);
-    const double myx = (d0x[g] + d1x[g]) - (d2x[g] + d3x[g]);
-    const double myy = (d0y[g] + d1y[g]) - (d2y[g] + d3y[g]);
-    const double myz = (d0z[g] + d1z[g]) - (d2z[g] + d3z[g]);
-    const double mzx = (d0x[g] + d1x[g]) + (d2x[g] + d3x[g]);
-    const double mzy = (d0y[g] + d1y[g]) + (d2y[g] + d3y[g]);
-    const double mzz = (d0z[g] + d1z[g]) + (d2z[g] + d3z[g]);
+    // 4 x each mean edge vector: the sum of the cell's 4 edges along that axis
+    double mean[3][3];  // [edge axis][component]
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      const double* p = position[c];
+      const double p0 = p[g + step[0]], p1 = p[g + step[1]], p2 = p[g + step[2]], p3 = p[g + step[3]];
+      const double p4 = p[g + step[4]], p5 = p[g + step[5]], p6 = p[g + step[6]], p7 = p[g + step[7]];
+      mean[0][c] = ((p1 - p0) + (p3 - p2)) + ((p5 - p4) + (p7 - p6));
+      mean[1][c] = ((p2 - p0) + (p3 - p1)) + ((p6 - p4) + (p7 - p5));
+      mean[2][c] = ((p4 - p0) + (p5 - p1)) + ((p6 - p2) + (p7 - p3));
+    }
+    const double mxx = mean[0][0], mxy = mean[0][1], mxz = mean[0][2];
+    const double myx = mean[1][0], myy = mean[1][1], myz = mean[1][2];
+    const double mzx = mean[2][0], mzy = mean[2][1], mzz = mean[2][2];
     const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
     crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
   }
@@ -306,6 +290,23 @@ struct LayerPasses {
   void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1
 };
 
+// Node values (3 x nodes) into the grid arrays slot .. slot + 2, and back, in a parallel region.
+void copy_in(const GridLayout& grid, const Eigen::Matrix3Xd& values, const Arrays& a, int slot) {
+#pragma omp for schedule(static)
+  for (int n = 0; n < static_cast<int>(values.cols()); ++n) {
+    const int g = grid.point_of_node[n];
+    for (int axis = 0; axis < 3; ++axis) a[slot + axis][g] = values(axis, n);
+  }
+}
+
+void copy_out(const GridLayout& grid, const Arrays& a, int slot, Eigen::Matrix3Xd& values) {
+#pragma omp for schedule(static)
+  for (int n = 0; n < static_cast<int>(values.cols()); ++n) {
+    const int g = grid.point_of_node[n];
+    for (int axis = 0; axis < 3; ++axis) values(axis, n) = a[slot + axis][g];
+  }
+}
+
 // The z-layers [begin, end) of chunk `chunk` of `chunks`, about equal.
 Range chunk_layers(int layers, int chunk, int chunks) {
   return {layers * chunk / chunks, layers * (chunk + 1) / chunks};
@@ -323,14 +324,8 @@ int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rat
   [[maybe_unused]] const int team = std::max(1, std::min(threads, slabs));
 #pragma omp parallel num_threads(team) if (team > 1) reduction(+ : crushed)
   {
-#pragma omp for schedule(static)
-    for (int n = 0; n < num_nodes; ++n) {
-      const int g = grid.point_of_node[n];
-      for (int axis = 0; axis < 3; ++axis) a[kPosition + axis][g] = state.positions(axis, n);
-      if (with_rate) {
-        for (int axis = 0; axis < 3; ++axis) a[kVelocity + axis][g] = state.velocities(axis, n);
-      }
-    }
+    copy_in(grid, state.positions, a, kPosition);
+    if (with_rate) copy_in(grid, state.velocities, a, kVelocity);
     // Each thread takes a chunk of z-layers and runs the passes layer after layer, so that a layer
     // is still in cache when the next pass reads it. A chunk's first layer needs the layer before
     // it (another chunk's last) for its edge tensions, and so do the gathers of its first two
@@ -358,11 +353,7 @@ int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rat
       if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
     }
 #pragma omp barrier
-#pragma omp for schedule(static)
-    for (int n = 0; n < num_nodes; ++n) {
-      const int g = grid.point_of_node[n];
-      for (int axis = 0; axis < 3; ++axis) forces(axis, n) = a[kForce + axis][g];
-    }
+    copy_out(grid, a, kForce, forces);
   }
   return crushed;
 }

@@ -18,6 +18,7 @@
 #include "arguments.h"
 #include "bench_support.h"
 #include "commands.h"
+#include "grid_spring_floor.h"
 #include "cubespring/constraints.h"
 #include "cubespring/integrator.h"
 
@@ -104,7 +105,7 @@ LatticeDesc sphere_lattice(int across, double cell_size, const Material& materia
 struct Row {
   std::string name;
   int cells = 0, nodes = 0, springs = 0;
-  double bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
+  double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
   int implicit_iterations = 0;
 };
@@ -130,7 +131,8 @@ class ExplicitStepper {
   Stepper stepper_;
 };
 
-Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o) {
+// `box`: the body's cell counts when it is a box (for the floor with implicit connectivity).
+Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o, const Eigen::Vector3i* box = nullptr) {
   Result<Model> built = build_model(desc);
   if (!built) throw std::runtime_error(built.message());
   const Model& model = built.value();
@@ -159,14 +161,30 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o)
   ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2);
   ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1);
   ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1);
-  const std::vector<double> times = interleaved_best_times(
-      o.min_seconds, {[&] { bare_spring_pass(model, start.positions, forces); }, std::ref(symplectic1),
-                      std::ref(symplectic2), std::ref(verlet1), std::ref(exact1)});
+  std::vector<std::function<void()>> columns{[&] { bare_spring_pass(model, start.positions, forces); },
+                                             std::ref(symplectic1), std::ref(symplectic2), std::ref(verlet1),
+                                             std::ref(exact1)};
+  std::unique_ptr<GridSpringFloor> floor;
+  if (box != nullptr) {
+    const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
+    if (!springs) throw std::runtime_error(springs.message());
+    floor = std::make_unique<GridSpringFloor>(*box, desc.cell_size.x(), start.positions,
+                                              springs.value().edge_stiffness.x(), springs.value().diagonal_stiffness);
+    columns.push_back(std::ref(*floor));
+  }
+  const std::vector<double> times = interleaved_best_times(o.min_seconds, columns);
   row.bare = times[0];
   row.symplectic1 = times[1];
   row.symplectic2 = times[2];
   row.verlet1 = times[3];
   row.exact_bending1 = times[4];
+  if (floor) {
+    if (floor->springs() != model.num_springs() || !std::isfinite(floor->checksum())) {
+      throw std::runtime_error("the grid floor of " + name + " visited " + std::to_string(floor->springs()) +
+                               " springs, the model has " + std::to_string(model.num_springs()));
+    }
+    row.grid_bare = times[5];
+  }
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
     StepSettings settings;
@@ -193,7 +211,7 @@ int run_bench(const BenchOptions& o) {
     for (const Eigen::Vector3i& n : parse_size_list(o.sizes)) {
       std::ostringstream name;
       name << n.x() << "x" << n.y() << "x" << n.z();
-      rows.push_back(bench_body(name.str(), box_lattice(n, Eigen::Vector3d::Constant(0.01), material), o));
+      rows.push_back(bench_body(name.str(), box_lattice(n, Eigen::Vector3d::Constant(0.01), material), o, &n));
       if (!o.json) std::fprintf(stderr, "benched %s\n", name.str().c_str());
     }
     if (o.sphere_cells_across > 0) {
@@ -209,7 +227,9 @@ int run_bench(const BenchOptions& o) {
     nlohmann::json out = nlohmann::json::array();
     for (const Row& r : rows) {
       out.push_back({{"body", r.name}, {"cells", r.cells}, {"nodes", r.nodes}, {"springs", r.springs},
-                     {"bare_spring_pass_ms", 1e3 * r.bare}, {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
+                     {"bare_spring_pass_ms", 1e3 * r.bare},
+                     {"grid_bare_spring_pass_ms", r.grid_bare > 0 ? nlohmann::json(1e3 * r.grid_bare) : nlohmann::json()},
+                     {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
                      {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}}},
                      {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
                      {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
@@ -222,22 +242,30 @@ int run_bench(const BenchOptions& o) {
   std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"
               ">= %.2f s each; implicit: mean over >= %.1f s)\n",
               kBatches, o.min_seconds / kBatches, o.min_seconds);
-  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %7s %9s | %9s %9s %9s %7s | %10s %5s %10s\n", "body", "cells", "nodes",
-              "springs", "bare", "symp 1t", "symp 2t", "2t gain", "full/bare", "Gspring/s", "verlet 1t", "exact 1t",
-              "exact/pap", "implicit", "CG it", "s/sim s");
+  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %9s %9s | %9s %9s %9s %9s %7s | %10s %5s %10s\n", "body", "cells",
+              "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "full/bare", "full/grid", "Gspring/s",
+              "grid G/s", "verlet 1t", "exact 1t", "exact/pap", "implicit", "CG it", "s/sim s");
   for (const Row& r : rows) {
-    std::printf("%-12s %8d %9d %9d | %9.4f %9.4f %9.4f %7.2f %9.2f | %9.3f %9.4f %9.4f %7.2f |", r.name.c_str(), r.cells,
-                r.nodes, r.springs, 1e3 * r.bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2, r.symplectic1 / r.symplectic2,
-                r.symplectic1 / r.bare, 1e-9 * r.springs / r.bare, 1e3 * r.verlet1, 1e3 * r.exact_bending1,
-                r.exact_bending1 / r.symplectic1);
+    char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
+    if (r.grid_bare > 0) {
+      std::snprintf(grid_bare, sizeof grid_bare, "%.4f", 1e3 * r.grid_bare);
+      std::snprintf(over_grid, sizeof over_grid, "%.2f", r.symplectic1 / r.grid_bare);
+      std::snprintf(grid_rate, sizeof grid_rate, "%.3f", 1e-9 * r.springs / r.grid_bare);
+    }
+    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %7.2f |", r.name.c_str(),
+                r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2,
+                r.symplectic1 / r.symplectic2, r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate,
+                1e3 * r.verlet1, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1);
     if (r.implicit_step > 0) {
       std::printf(" %10.3f %5d %10.2f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3);
     } else {
       std::printf(" %10s %5s %10s\n", "-", "-", "-");
     }
   }
-  std::printf("bare: one linear spring-force pass (the floor); symp: full symplectic Euler step (springs, correction,\n"
-              "inversion check, damping, integration); full/bare: 1-thread step over bare pass; Gspring/s: bare pass;\n"
+  std::printf("bare: one linear spring-force pass over the spring lists; grid bare: the same with implicit lattice\n"
+              "connectivity (boxes only: springs at fixed index offsets, plain loops), the issue's floor; symp: full\n"
+              "symplectic Euler step (springs, correction, inversion check, damping, integration); full/bare, full/grid:\n"
+              "1-thread step over each floor; Gspring/s, grid G/s: springs per second of each floor;\n"
               "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
               "implicit: dt = 1 ms, CG to 1e-6; s/sim s: wall seconds per simulated second.\n");
   return 0;
