@@ -51,7 +51,9 @@ enum Slot : int {
   kEdgeLength = kFamilyForce + 3 * kSpringFamilies,
   kEdgeRate = kEdgeLength + kEdgeFamilies,
   kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
-  kSlots = kEdgeOwnTension + kEdgeFamilies
+  kEdgeVector = kEdgeOwnTension + kEdgeFamilies,  // x, y, z per edge family (twist only)
+  kCellTwist = kEdgeVector + 3 * kEdgeFamilies,   // Q per face normal x, y, z (twist only)
+  kSlots = kCellTwist + 3
 };
 
 class Arrays {
@@ -86,8 +88,8 @@ inline Range layer_range(const GridLayout& grid, int slab, int rows) {
   return {begin, begin + rows * grid.stride_y};
 }
 
-// Pass 1 for family f on one z-layer.
-template <bool kWithRate, bool kDiagonal>
+// Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist).
+template <bool kWithRate, bool kDiagonal, bool kKeepVector>
 CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const Arrays& a) {
   const SpringFamily& family = grid.families[f];
   const Range range = layer_range(grid, slab, family.rows);
@@ -105,6 +107,9 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
   double* __restrict length_out = a[kEdgeLength + e];
   double* __restrict rate_out = a[kEdgeRate + e];
   double* __restrict own_out = a[kEdgeOwnTension + e];
+  double* __restrict vector_x = a[kEdgeVector + 3 * e];
+  double* __restrict vector_y = a[kEdgeVector + 3 * e + 1];
+  double* __restrict vector_z = a[kEdgeVector + 3 * e + 2];
   const double* __restrict stiffness = family.stiffness.data();
   const double* __restrict damping = kWithRate ? family.damping.data() : nullptr;
   const double rest = family.rest_length;
@@ -135,6 +140,11 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
       fz[g] = ez * inverse;
       length_out[g] = length;
       own_out[g] = own;
+      if constexpr (kKeepVector) {
+        vector_x[g] = ex;
+        vector_y[g] = ey;
+        vector_z[g] = ez;
+      }
     }
   }
 }
@@ -142,10 +152,12 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
 template <bool kWithRate>
 void measure_springs(const GridLayout& grid, int f, int slab, const Arrays& a) {
   if (slab >= grid.families[f].slabs) return;
-  if (f < kEdgeFamilies) {
-    measure_family<kWithRate, false>(grid, f, slab, a);
+  if (f >= kEdgeFamilies) {
+    measure_family<kWithRate, true, false>(grid, f, slab, a);
+  } else if (grid.has_twist) {
+    measure_family<kWithRate, false, true>(grid, f, slab, a);
   } else {
-    measure_family<kWithRate, true>(grid, f, slab, a);
+    measure_family<kWithRate, false, false>(grid, f, slab, a);
   }
 }
 
@@ -242,6 +254,87 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
   }
 }
 
+// The twist of the exact-bending model (docs/model-exact-bending.md section 3; the same terms as
+// src/twist.h, arranged by faces of the grid). A cell's two faces normal to d (in-plane axes
+// a < c) have mean edge vectors a_s, c_s (s = lower, upper); w_d = (a_u . c_u - a_l . c_l) / h^2
+// and Q_d = k h w_d / 2. The a-edges of a face get the force -Q_d c_l (lower face of the cell) or
+// +Q_d c_u (upper face) on their lower corner, the c-edges -Q_d a_l or +Q_d a_u. A face is the
+// upper face of one cell and the lower of the next along d, so an edge gets, from each face F it
+// lies on, (Q_d[F - step d] - Q_d[F]) times the face's mean of its other in-plane edges.
+
+// Pass 2b, twist only: Q_d of every cell of one z-layer.
+template <int d>
+inline double twist_coefficient(const Arrays& a, const int* steps, int g, double stiffness, double h) {
+  constexpr int a_axis = d == 0 ? 1 : 0, c_axis = d == 2 ? 1 : 2;
+  const int sa = steps[a_axis], sc = steps[c_axis];
+  // a face's a-edges start at F and F + sc, its c-edges at F and F + sa; 4 x their dot product
+  auto face = [&](int f) {
+    double dot = 0.0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double* av = a[kEdgeVector + 3 * a_axis + axis];
+      const double* cv = a[kEdgeVector + 3 * c_axis + axis];
+      dot += (av[f] + av[f + sc]) * (cv[f] + cv[f + sa]);
+    }
+    return dot;
+  };
+  const double lower = 0.25 * face(g), upper = 0.25 * face(g + steps[d]);
+  return 0.5 * stiffness * h * ((upper - lower) / (h * h));
+}
+
+CUBESPRING_VECTOR_CLONES void twist_cell_pass(const GridLayout& grid, int slab, const Arrays& a) {
+  const Range range = layer_range(grid, slab, grid.cell_rows);
+  const int steps[3] = {1, grid.stride_y, grid.stride_z};
+  const double h = grid.cell_size.x();
+  const double* __restrict stiffness = grid.cell_twist.data();
+  double* __restrict qx = a[kCellTwist];
+  double* __restrict qy = a[kCellTwist + 1];
+  double* __restrict qz = a[kCellTwist + 2];
+#pragma omp simd
+  for (int g = range.begin; g < range.end; ++g) {
+    qx[g] = twist_coefficient<0>(a, steps, g, stiffness[g], h);
+    qy[g] = twist_coefficient<1>(a, steps, g, stiffness[g], h);
+    qz[g] = twist_coefficient<2>(a, steps, g, stiffness[g], h);
+  }
+}
+
+// Pass 3b, twist only: the twist forces of the edges of family f on one z-layer, added to their
+// forces. The edge along e at g lies on the faces normal to each other axis d at F = g and
+// F = g - step o (o the third axis); the face's mean of its o-edges starts at F and F + step e.
+CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int slab, const Arrays& a) {
+  const SpringFamily& family = grid.families[f];
+  if (slab >= family.slabs) return;
+  const Range range = layer_range(grid, slab, family.rows);
+  const int steps[3] = {1, grid.stride_y, grid.stride_z};
+  const int se = steps[f];
+  // the two faces' normals d and third axes o: (f + 1, f + 2) and (f + 2, f + 1)
+  const int d1 = (f + 1) % 3, d2 = (f + 2) % 3;
+  const int s1 = steps[d1], s2 = steps[d2];
+  const double* __restrict q1 = a[kCellTwist + d1];
+  const double* __restrict q2 = a[kCellTwist + d2];
+  const double* __restrict m1x = a[kEdgeVector + 3 * d2];  // o = d2 for the faces normal to d1
+  const double* __restrict m1y = a[kEdgeVector + 3 * d2 + 1];
+  const double* __restrict m1z = a[kEdgeVector + 3 * d2 + 2];
+  const double* __restrict m2x = a[kEdgeVector + 3 * d1];
+  const double* __restrict m2y = a[kEdgeVector + 3 * d1 + 1];
+  const double* __restrict m2z = a[kEdgeVector + 3 * d1 + 2];
+  double* __restrict fx = a[kFamilyForce + 3 * f];
+  double* __restrict fy = a[kFamilyForce + 3 * f + 1];
+  double* __restrict fz = a[kFamilyForce + 3 * f + 2];
+#pragma omp simd
+  for (int g = range.begin; g < range.end; ++g) {
+    // normal d1: faces at g and g - s2; normal d2: faces at g and g - s1
+    const double near1 = 0.5 * (q1[g - s1] - q1[g]), far1 = 0.5 * (q1[g - s2 - s1] - q1[g - s2]);
+    const double near2 = 0.5 * (q2[g - s2] - q2[g]), far2 = 0.5 * (q2[g - s1 - s2] - q2[g - s1]);
+    const int f1 = g - s2, f2 = g - s1;
+    fx[g] += (near1 * (m1x[g] + m1x[g + se]) + far1 * (m1x[f1] + m1x[f1 + se])) +
+             (near2 * (m2x[g] + m2x[g + se]) + far2 * (m2x[f2] + m2x[f2 + se]));
+    fy[g] += (near1 * (m1y[g] + m1y[g + se]) + far1 * (m1y[f1] + m1y[f1 + se])) +
+             (near2 * (m2y[g] + m2y[g + se]) + far2 * (m2y[f2] + m2y[f2 + se]));
+    fz[g] += (near1 * (m1z[g] + m1z[g + se]) + far1 * (m1z[f1] + m1z[f1 + se])) +
+             (near2 * (m2z[g] + m2z[g + se]) + far2 * (m2z[f2] + m2z[f2 + se]));
+  }
+}
+
 // Pass 4 on one z-layer of points: each family's springs that start at g (at g - from) pull
 // g towards their other end; those that end at g (at g - to) pull it back.
 CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, const Arrays& a) {
@@ -282,10 +375,14 @@ struct LayerPasses {
   }
   int cells(int slab) const {  // needs measure(slab) and measure(slab + 1)
     if (slab >= grid.cell_slabs) return 0;
+    if (grid.has_twist) twist_cell_pass(grid, slab, a);
     return with_rate ? cell_pass<true>(grid, slab, a) : cell_pass<false>(grid, slab, a);
   }
-  void edge_tensions(int slab) const {  // needs cells(slab) and cells(slab - 1)
-    for (int f = 0; f < kEdgeFamilies; ++f) edge_tension_pass(grid, f, slab, a);
+  void edge_tensions(int slab) const {  // needs cells(slab) and cells(slab - 1), measure(slab + 1)
+    for (int f = 0; f < kEdgeFamilies; ++f) {
+      edge_tension_pass(grid, f, slab, a);
+      if (grid.has_twist) twist_edge_pass(grid, f, slab, a);
+    }
   }
   void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1
 };
@@ -321,7 +418,9 @@ int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rat
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   const int slabs = grid.points.z();
   int crushed = 0;
-  [[maybe_unused]] const int team = std::max(1, std::min(threads, slabs));
+  // a thread pays for itself from about this many points on (measured with cubespring bench)
+  constexpr int kMinPointsPerThread = 4096;
+  [[maybe_unused]] const int team = std::max(1, std::min({threads, slabs, grid.num_points / kMinPointsPerThread}));
 #pragma omp parallel num_threads(team) if (team > 1) reduction(+ : crushed)
   {
     copy_in(grid, state.positions, a, kPosition);

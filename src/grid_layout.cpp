@@ -24,7 +24,7 @@ int family_of_step(const Eigen::Vector3i& step) {
 }  // namespace
 
 std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
-  if (model.has_twist || model.num_cells() == 0 ||
+  if (model.num_cells() == 0 ||
       static_cast<int>(model.cell_grid_index.size()) != model.num_cells() ||
       static_cast<int>(model.node_grid_index.size()) != model.num_nodes()) {
     return nullptr;
@@ -97,6 +97,8 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
   for (auto& coefficient : grid.correction) coefficient.assign(size, 0.0);
   grid.cell_occupied.assign(size, 0.0);
   if (model.has_stiffness_damping) grid.cell_beta.assign(size, 0.0);
+  grid.has_twist = model.has_twist;
+  if (model.has_twist) grid.cell_twist.assign(size, 0.0);
   grid.cell_rows = cells.y();
   grid.cell_slabs = cells.z();
   for (int c = 0; c < model.num_cells(); ++c) {
@@ -105,6 +107,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
     const double coefficients[6] = {d(0, 0), d(1, 1), d(2, 2), d(0, 1), d(0, 2), d(1, 2)};
     for (int i = 0; i < 6; ++i) grid.correction[i][point] = coefficients[i];
     grid.cell_occupied[point] = 1.0;
+    if (model.has_twist) grid.cell_twist[point] = model.cell_twist_stiffness[c];
     if (model.has_stiffness_damping) {
       grid.cell_beta[point] = model.materials[model.cell_material[c]].stiffness_damping;
     }

@@ -47,6 +47,8 @@ struct GridLayout {
   std::array<std::vector<double>, 6> correction;  ///< D: xx, yy, zz, xy, xz, yz [Pa]
   std::vector<double> cell_beta;        ///< the material's beta [s]; empty without stiffness damping
   std::vector<double> cell_occupied;    ///< 1 for a cell of the body, else 0
+  std::vector<double> cell_twist;       ///< zeta G [Pa] (exact-bending model); empty without twist
+  bool has_twist = false;
   int cell_rows = 0, cell_slabs = 0;    ///< cells per x-row are whole rows too
 
   int point(const Eigen::Vector3i& index) const {
@@ -59,8 +61,8 @@ struct GridLayout {
 /// passes spend their work on every point of the box.
 inline constexpr double kMinGridFill = 0.5;
 
-/// The grid layout of a built model, or null when the model does not suit it (twist terms, a box
-/// filled less than kMinGridFill, or cells whose springs are not the lattice's).
+/// The grid layout of a built model, or null when the model does not suit it (a box filled less
+/// than kMinGridFill, or cells whose springs are not the lattice's).
 std::shared_ptr<const GridLayout> build_grid_layout(const Model& model);
 
 }  // namespace cubespring

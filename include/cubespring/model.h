@@ -81,7 +81,7 @@ struct Model {
 
   /// The body on the dense grid of its bounding box, which the explicit force passes use instead
   /// of the spring lists when the body fills at least half the box (docs/data-layout.md); null
-  /// otherwise, and for the exact-bending model. Built by build_model() from the arrays above, it
+  /// otherwise. Built by build_model() from the arrays above, it
   /// keeps its own copy of the stiffnesses: after changing them, call update_grid_layout().
   std::shared_ptr<const GridLayout> grid_layout;
 

@@ -202,9 +202,9 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
 }
 
 // The grid passes (bodies that fill at least half their bounding box) add the same springs,
-// correction, damping and inversion recovery as the spring lists, to rounding: a box, a box with
-// holes and a stiff inclusion of another material, each with a crushed cell and with a spring
-// of zero length (no direction: no force).
+// correction, twist, damping and inversion recovery as the spring lists, to rounding: a box, a
+// box with holes and a stiff inclusion of another material, in both models, each with a crushed
+// cell and with a spring of zero length (no direction: no force).
 TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
@@ -220,8 +220,16 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
     holes.cell_material.push_back(cell.x() >= 3 && cell.x() <= 5 && cell.y() >= 2 && cell.y() <= 4 ? 1 : 0);
   }
   holes.cells = kept;
+  LatticeDesc exact_box = box_lattice({7, 5, 4}, Eigen::Vector3d::Constant(0.01), damped);
+  exact_box.model = CellModel::kExactBending;
+  LatticeDesc exact_holes = holes;
+  exact_holes.cell_size.setConstant(0.01);  // the exact-bending model takes cubes only
+  exact_holes.model = CellModel::kExactBending;
   const std::vector<std::pair<const char*, LatticeDesc>> bodies{
-      {"box", box_lattice({7, 5, 4}, Eigen::Vector3d::Constant(0.01), damped)}, {"holes and inclusion", holes}};
+      {"box", box_lattice({7, 5, 4}, Eigen::Vector3d::Constant(0.01), damped)},
+      {"holes and inclusion", holes},
+      {"exact-bending box", exact_box},
+      {"exact-bending holes and inclusion", exact_holes}};
   for (const auto& [name, desc] : bodies) {
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
@@ -253,18 +261,23 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
   }
 }
 
-// Which bodies the grid passes take: those that fill at least half their box, without twist.
+// Which bodies the grid passes take: those that fill at least half their box.
 TEST(Forces, GridPassesTakeOnlyBodiesThatFillHalfTheirBox) {
   LatticeDesc diagonal_line;
   diagonal_line.cell_size.setConstant(0.01);
   diagonal_line.materials = {notes_material(0.3)};
-  for (int i = 0; i < 4; ++i) diagonal_line.cells.push_back({i, i, 0});  // 4 of 64 cells of its box
+  for (int i = 0; i < 4; ++i) diagonal_line.cells.push_back({i, i, 0});  // 4 of 16 cells of its box
   ASSERT_TRUE(build_model(diagonal_line).ok());
   EXPECT_EQ(build_model(diagonal_line).value().grid_layout, nullptr);
+  diagonal_line.cells.push_back({1, 0, 0});  // 5 of 16
+  diagonal_line.cells.push_back({2, 1, 0});
+  diagonal_line.cells.push_back({3, 2, 0});  // 7 of 16
+  EXPECT_EQ(build_model(diagonal_line).value().grid_layout, nullptr);
+  diagonal_line.cells.push_back({0, 1, 0});  // 8 of 16: half
+  EXPECT_NE(build_model(diagonal_line).value().grid_layout, nullptr);
   LatticeDesc exact = box_lattice({3, 2, 2}, Eigen::Vector3d::Constant(0.01), notes_material(0.3));
   exact.model = CellModel::kExactBending;
-  EXPECT_EQ(build_model(exact).value().grid_layout, nullptr);
-  EXPECT_NE(test::box_model({3, 2, 2}, notes_material(0.3)).grid_layout, nullptr);
+  EXPECT_NE(build_model(exact).value().grid_layout, nullptr);
 }
 
 TEST(Forces, GravityPullsEveryMass) {
