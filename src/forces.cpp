@@ -341,6 +341,10 @@ template <typename Finish>
 double grid_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish) {
   prepare(model, ws, forces);
+  if (ws.grid_arrays_layout != model.grid_layout) {  // another body's arrays: start afresh
+    ws.grid_arrays.clear();
+    ws.grid_arrays_layout = model.grid_layout;
+  }
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const int crushed = grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces);
   if (crushed > 0) {

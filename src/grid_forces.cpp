@@ -427,8 +427,9 @@ int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rat
     if (with_rate) copy_in(grid, state.velocities, a, kVelocity);
     // Each thread takes a chunk of z-layers and runs the passes layer after layer, so that a layer
     // is still in cache when the next pass reads it. A chunk's first layer needs the layer before
-    // it (another chunk's last) for its edge tensions, and so do the gathers of its first two
-    // layers: they wait for the second barrier.
+    // it (another chunk's last) for its edge tensions: they wait for the second barrier. Its first
+    // two layers' gathers need those tensions, and those of the layer before, which is the
+    // previous chunk's first when that chunk has one layer: they wait for the third.
     const LayerPasses passes{grid, a, with_rate};
     int chunk = 0, chunks = 1;
 #ifdef _OPENMP
@@ -446,8 +447,9 @@ int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rat
       if (first_chunk || slab > layers.begin + 1) passes.gather(slab);
     }
 #pragma omp barrier
+    if (!first_chunk) passes.edge_tensions(layers.begin);
+#pragma omp barrier
     if (!first_chunk) {
-      passes.edge_tensions(layers.begin);
       passes.gather(layers.begin);
       if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
     }

@@ -14,11 +14,12 @@
 
 namespace cubespring {
 
-/// Spring and correction forces [N] on every node into `forces` (3 x num_nodes), with the
+/// Spring, correction and twist forces [N] on every node into `forces` (3 x num_nodes), with the
 /// springs' and correction's Rayleigh damping when with_rate. No inversion recovery, gravity,
 /// loads or mass damping. Returns the number of crushed cells (signed volume below
 /// kCrushedVolumeFraction of the rest volume), for the caller to add their recovery.
-/// `scratch` keeps the grid's arrays between calls.
+/// `scratch` keeps the grid's arrays between calls; clear it before using it with another layout
+/// (entries the passes never write must stay as first set).
 int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                        std::vector<double>& scratch, Eigen::Matrix3Xd& forces);
 

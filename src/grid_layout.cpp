@@ -104,6 +104,8 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
   for (int c = 0; c < model.num_cells(); ++c) {
     const int point = grid.point(model.cell_grid_index[c]);
     const Eigen::Matrix3d& d = model.cell_correction[c];
+    // 6 coefficients are kept: a correction that is not symmetric (to rounding) stays on the lists
+    if ((d - d.transpose()).cwiseAbs().maxCoeff() > 1e-12 * d.cwiseAbs().maxCoeff()) return nullptr;
     const double coefficients[6] = {d(0, 0), d(1, 1), d(2, 2), d(0, 1), d(0, 2), d(1, 2)};
     for (int i = 0; i < 6; ++i) grid.correction[i][point] = coefficients[i];
     grid.cell_occupied[point] = 1.0;

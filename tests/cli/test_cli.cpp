@@ -158,11 +158,15 @@ TEST(Cli, VoxelizeTableNamesTheParts) {
 }
 
 // A short core bench run: one row per body with the documented JSON keys, the bodies' sizes counted
-// by hand (a 2x2x2 box: 27 nodes, 54 edges + 32 inner diagonals), every timed column a positive time.
+// by hand (a 2x2x2 box: 27 nodes, 54 edges + 32 inner diagonals), every timed column a positive time;
+// the floor with implicit connectivity for boxes only (it must visit the model's spring count).
 TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
-  const nlohmann::json rows = run_json("bench --sizes '2,2,2;3,1,1' --sphere 0 --min-seconds 0.01 --implicit-max-cells 100 --json");
+  const nlohmann::json rows = run_json("bench --sizes '2,2,2;3,1,1' --sphere 4 --min-seconds 0.01 --implicit-max-cells 100 --json");
   ASSERT_TRUE(rows.is_array());
-  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[2]["body"], "sphere 4");
+  EXPECT_TRUE(rows[2]["grid_bare_spring_pass_ms"].is_null()) << rows[2].dump();
+  for (int box = 0; box < 2; ++box) EXPECT_GT(rows[box]["grid_bare_spring_pass_ms"].get<double>(), 0.0) << rows[box].dump();
   const nlohmann::json& box = rows[0];
   EXPECT_EQ(box["body"], "2x2x2");
   EXPECT_EQ(box["cells"], 8);

@@ -250,15 +250,74 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
       }
       Loads loads;
       loads.gravity = {0, 0, -9.81};
-      ForceWorkspace grid_ws, lists_ws;
-      Eigen::Matrix3Xd by_grid, by_lists;
-      compute_forces(grid, state, loads, ForceOptions{true, 1}, grid_ws, by_grid);
-      compute_forces(lists, state, loads, ForceOptions{true, 1}, lists_ws, by_lists);
-      ASSERT_TRUE(by_grid.allFinite()) << name;
-      const double scale = by_lists.cwiseAbs().maxCoeff();
-      EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale) << name << (crushed ? ", crushed" : "");
+      for (const bool damping : {true, false}) {
+        ForceWorkspace grid_ws, lists_ws;
+        Eigen::Matrix3Xd by_grid, by_lists;
+        compute_forces(grid, state, loads, ForceOptions{damping, 1}, grid_ws, by_grid);
+        compute_forces(lists, state, loads, ForceOptions{damping, 1}, lists_ws, by_lists);
+        ASSERT_TRUE(by_grid.allFinite()) << name;
+        const double scale = by_lists.cwiseAbs().maxCoeff();
+        EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale)
+            << name << (crushed ? ", crushed" : "") << (damping ? "" : ", no damping");
+      }
     }
   }
+}
+
+// The grid passes cut the z-layers into one chunk per thread (at most one per 4096 points); a
+// chunk's first layers wait for the previous chunk. Any thread count gives the same bits, and the
+// lists' forces to rounding: a plate of 3 layers of points (12288 points: with 3 or 4 threads,
+// chunks of one layer each, whose deferred layers depend on each other), in the exact-bending
+// model, and a box of 15 layers (9375 points: 2 chunks), each with a crushed cell.
+TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  LatticeDesc plate = box_lattice({63, 63, 2}, Eigen::Vector3d::Constant(0.01), damped);
+  plate.model = CellModel::kExactBending;
+  const std::vector<std::pair<const char*, LatticeDesc>> bodies{
+      {"exact-bending plate", plate}, {"box", box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped)}};
+  for (const auto& [name, desc] : bodies) {
+    Result<Model> built = build_model(desc);
+    ASSERT_TRUE(built.ok()) << built.message();
+    const Model& grid = built.value();
+    ASSERT_NE(grid.grid_layout, nullptr) << name;
+    Model lists = grid;
+    lists.grid_layout.reset();
+    State state = rest_state(grid);
+    state.positions = test::perturbed(grid, 1e-3);
+    state.velocities = test::perturbed(grid, 0.1) - grid.rest_positions;
+    const int c = grid.num_cells() / 2;
+    for (int corner = 4; corner < 8; ++corner) state.positions(2, grid.cell_nodes[c][corner]) -= 0.015;
+    Loads loads;
+    loads.gravity = {0, 0, -9.81};
+    ForceWorkspace ws;
+    Eigen::Matrix3Xd one, many, by_lists;
+    compute_forces(grid, state, loads, ForceOptions{true, 1}, ws, one);
+    for (const int threads : {2, 3, 4}) {
+      compute_forces(grid, state, loads, ForceOptions{true, threads}, ws, many);
+      EXPECT_EQ(std::memcmp(one.data(), many.data(), sizeof(double) * one.size()), 0) << name << ", " << threads << " threads";
+    }
+    compute_forces(lists, state, loads, ForceOptions{true, 2}, ws, by_lists);
+    EXPECT_LT((one - by_lists).cwiseAbs().maxCoeff(), 1e-12 * by_lists.cwiseAbs().maxCoeff()) << name;
+  }
+}
+
+// A workspace used by one body and then another whose grid arrays have the same size, but
+// another shape, starts afresh: the second body's forces are those of a workspace of its own.
+TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
+  // 2 x 3 x 4 points padded by 6 + 2 + 1 on each side, and 4 x 2 x 2 padded by 8 + 4 + 1: 42 each
+  const Model first = test::box_model({1, 2, 3}, notes_material(0.3));
+  const Model second = test::box_model({3, 1, 1}, notes_material(0.45));
+  State first_state = rest_state(first);
+  first_state.positions = test::perturbed(first, 1e-3);
+  State second_state = rest_state(second);
+  second_state.positions = test::perturbed(second, 1e-3);
+  ForceWorkspace shared, own;
+  Eigen::Matrix3Xd forces, expected;
+  compute_forces(first, first_state, Loads{}, ForceOptions{}, shared, forces);
+  compute_forces(second, second_state, Loads{}, ForceOptions{}, shared, forces);
+  compute_forces(second, second_state, Loads{}, ForceOptions{}, own, expected);
+  EXPECT_EQ(std::memcmp(forces.data(), expected.data(), sizeof(double) * forces.size()), 0);
 }
 
 // Which bodies the grid passes take: those that fill at least half their box.

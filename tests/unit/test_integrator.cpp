@@ -166,7 +166,9 @@ TEST(Integrator, ImplicitEulerIsStableWhereExplicitBlowsUp) {
 TEST(Integrator, SameRunTwiceIsBitIdenticalOnOneAndTwoThreads) {
   Material m = test::notes_material(0.3);
   m.stiffness_damping = 1e-4;
-  const Model model = test::box_model({12, 10, 8}, m);  // enough springs for 2 threads
+  // enough springs for 2 blocks of the implicit step's force pass; the explicit step runs on the
+  // grid passes, one thread at this size (Forces.GridChunksGiveTheSameBitsOnAnyThreadCount)
+  const Model model = test::box_model({12, 10, 8}, m);
   Loads loads;
   loads.gravity = {0, 0, -9.81};
   for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kImplicitEuler}) {
@@ -185,9 +187,9 @@ TEST(Integrator, SameRunTwiceIsBitIdenticalOnOneAndTwoThreads) {
   }
 }
 
-// The explicit steps of a dense body run on its grid (loads and kick-drift in the grid passes);
-// the same steps on the spring lists give the same states to rounding: damped, under gravity,
-// clamped, and with a cell crushed at the start (its recovery is added after the grid's kick).
+// The explicit steps of a dense body run on its grid passes; the same steps on the spring lists
+// give the same states to rounding: damped, under gravity, clamped, and with a cell crushed at
+// the start (its recovery is added to the grid's forces before the kick).
 TEST(Integrator, GridAndSpringListsStepAlike) {
   Material m = test::notes_material(0.3);
   m.stiffness_damping = 1e-4;
