@@ -21,6 +21,10 @@
 #include <algorithm>
 #include <cmath>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "cell_geometry.h"
 #include "force_blocks.h"
 #include "force_passes.h"
@@ -267,50 +271,73 @@ void prepare(const Model& model, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
   if (forces.cols() != model.num_nodes()) forces.resize(3, model.num_nodes());
 }
 
-// The passes in one parallel region; finish(n) is called once for every node, after its force.
-// Returns the largest value finish gave (NaN wins).
+// The blocks [begin, end) of one thread's share of the passes; barrier() waits for every share
+// (nothing when one thread runs them all). Every thread finds the same crushed count, so all or
+// none wait at the inversion recovery's barrier.
+template <bool kWithTwist, typename Finish, typename Barrier>
+void run_block_passes(const Model& model, const State& state, bool with_rate, int begin_block, int end_block,
+                      bool first_share, const Barrier& barrier, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
+                      const Finish& finish) {
+  for (int b = begin_block; b < end_block; ++b) {
+    const int begin = force_block_begin(model, b);
+    const int end = force_block_end(model, b);
+    forces.middleCols(begin, end - begin).setZero();
+    ws.block_halo[b].setZero();
+    const int first = model.node_first_spring[begin];
+    const int last = model.node_first_spring[end];
+    if (with_rate) {
+      measure_springs<true>(model, state.positions, state.velocities, first, last, ws);
+    } else {
+      measure_springs<false>(model, state.positions, state.positions, first, last, ws);
+    }
+  }
+  barrier();
+  for (int b = begin_block; b < end_block; ++b) {
+    // the cells whose corner 0 is in the block, so that their twist forces stay in its nodes
+    const int first_cell = first_cell_from_node(model, force_block_begin(model, b));
+    const int last_cell = first_cell_from_node(model, force_block_end(model, b));
+    const TwistTarget twist{forces, ws.block_halo[b], force_block_end(model, b)};
+    ws.block_crushed[b] = cell_pass(model, with_rate, first_cell, last_cell, ws, kWithTwist ? &twist : nullptr);
+  }
+  barrier();
+  int crushed = 0;
+  for (int b = 0; b < num_force_blocks(model); ++b) crushed += ws.block_crushed[b];
+  if (crushed > 0) {
+    if (first_share) apply_inversion_forces(model, state.positions, ws, forces);
+    barrier();
+  }
+  for (int b = begin_block; b < end_block; ++b) ws.block_fastest[b] = scatter_block(model, b, ws, forces, finish);
+  barrier();
+  for (int b = begin_block; b < end_block; ++b) {
+    ws.block_fastest[b] = faster(settle_halo(model, b, ws, forces, finish), ws.block_fastest[b]);
+  }
+}
+
+// The passes, the blocks shared among threads (each a contiguous part, as a static schedule
+// would); finish(n) is called once for every node, after its force. Returns the largest value
+// finish gave (NaN wins).
 template <bool kWithTwist, typename Finish>
 double run_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
-                   Eigen::Matrix3Xd& forces, const Finish& finish) {
+                  Eigen::Matrix3Xd& forces, const Finish& finish) {
   prepare(model, ws, forces);
   const int blocks = num_force_blocks(model);
   const bool with_rate = options.damping && model.has_stiffness_damping;
-  [[maybe_unused]] const int threads = std::max(1, std::min(options.threads, blocks));
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-#pragma omp for schedule(static)
-    for (int b = 0; b < blocks; ++b) {
-      const int begin = force_block_begin(model, b);
-      const int end = force_block_end(model, b);
-      forces.middleCols(begin, end - begin).setZero();
-      ws.block_halo[b].setZero();
-      const int first = model.node_first_spring[begin];
-      const int last = model.node_first_spring[end];
-      if (with_rate) {
-        measure_springs<true>(model, state.positions, state.velocities, first, last, ws);
-      } else {
-        measure_springs<false>(model, state.positions, state.positions, first, last, ws);
-      }
+  const int threads = std::max(1, std::min(options.threads, blocks));
+  if (threads == 1) {  // no parallel region: entering one costs microseconds (grid_forces.cpp)
+    run_block_passes<kWithTwist>(model, state, with_rate, 0, blocks, true, [] {}, ws, forces, finish);
+  } else {
+#pragma omp parallel num_threads(threads)
+    {
+      int share = 0, shares = 1;
+#ifdef _OPENMP
+      share = omp_get_thread_num();
+      shares = omp_get_num_threads();
+#endif
+      run_block_passes<kWithTwist>(model, state, with_rate, blocks * share / shares, blocks * (share + 1) / shares,
+                                   share == 0, [] {
+#pragma omp barrier
+                                   }, ws, forces, finish);
     }
-#pragma omp for schedule(static)
-    for (int b = 0; b < blocks; ++b) {
-      // the cells whose corner 0 is in the block, so that their twist forces stay in its nodes
-      const int first_cell = first_cell_from_node(model, force_block_begin(model, b));
-      const int last_cell = first_cell_from_node(model, force_block_end(model, b));
-      const TwistTarget twist{forces, ws.block_halo[b], force_block_end(model, b)};
-      ws.block_crushed[b] = cell_pass(model, with_rate, first_cell, last_cell, ws, kWithTwist ? &twist : nullptr);
-    }
-    // every thread finds the same count, so all or none enter the single (and its barrier)
-    int crushed = 0;
-    for (int b = 0; b < blocks; ++b) crushed += ws.block_crushed[b];
-    if (crushed > 0) {
-#pragma omp single
-      apply_inversion_forces(model, state.positions, ws, forces);
-    }
-#pragma omp for schedule(static)
-    for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = scatter_block(model, b, ws, forces, finish);
-#pragma omp for schedule(static)
-    for (int b = 0; b < blocks; ++b) ws.block_fastest[b] = faster(settle_halo(model, b, ws, forces, finish), ws.block_fastest[b]);
   }
   double fastest_sq = 0.0;
   for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);
@@ -355,14 +382,19 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
     apply_inversion_forces(model, state.positions, ws, forces);
   }
   const int blocks = num_force_blocks(model);
-  [[maybe_unused]] const int threads = std::max(1, std::min(options.threads, blocks));
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-  for (int b = 0; b < blocks; ++b) {
+  const int threads = std::max(1, std::min(options.threads, blocks));
+  const auto finish_block = [&](int b) {
     double fastest_sq = 0.0;
     for (int n = force_block_begin(model, b); n < force_block_end(model, b); ++n) {
       fastest_sq = faster(finish(n), fastest_sq);
     }
     ws.block_fastest[b] = fastest_sq;
+  };
+  if (threads == 1) {  // no parallel region: entering one costs microseconds (grid_forces.cpp)
+    for (int b = 0; b < blocks; ++b) finish_block(b);
+  } else {
+#pragma omp parallel for schedule(static) num_threads(threads)
+    for (int b = 0; b < blocks; ++b) finish_block(b);
   }
   double fastest_sq = 0.0;
   for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);

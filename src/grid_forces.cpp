@@ -387,26 +387,62 @@ struct LayerPasses {
   void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1
 };
 
-// Node values (3 x nodes) into the grid arrays slot .. slot + 2, and back, in a parallel region.
-void copy_in(const GridLayout& grid, const Eigen::Matrix3Xd& values, const Arrays& a, int slot) {
-#pragma omp for schedule(static)
-  for (int n = 0; n < static_cast<int>(values.cols()); ++n) {
+// Part `chunk` of `chunks` of [0, count), about equal.
+Range chunk_range(int count, int chunk, int chunks) {
+  return {static_cast<int>(static_cast<long>(count) * chunk / chunks),
+          static_cast<int>(static_cast<long>(count) * (chunk + 1) / chunks)};
+}
+
+// Values of the nodes in `nodes` (of 3 x num_nodes) into the grid arrays slot .. slot + 2.
+void copy_in(const GridLayout& grid, const Eigen::Matrix3Xd& values, const Arrays& a, int slot, const Range& nodes) {
+  for (int n = nodes.begin; n < nodes.end; ++n) {
     const int g = grid.point_of_node[n];
     for (int axis = 0; axis < 3; ++axis) a[slot + axis][g] = values(axis, n);
   }
 }
 
-void copy_out(const GridLayout& grid, const Arrays& a, int slot, Eigen::Matrix3Xd& values) {
-#pragma omp for schedule(static)
-  for (int n = 0; n < static_cast<int>(values.cols()); ++n) {
+void copy_out(const GridLayout& grid, const Arrays& a, int slot, const Range& nodes, Eigen::Matrix3Xd& values) {
+  for (int n = nodes.begin; n < nodes.end; ++n) {
     const int g = grid.point_of_node[n];
     for (int axis = 0; axis < 3; ++axis) values(axis, n) = a[slot + axis][g];
   }
 }
 
-// The z-layers [begin, end) of chunk `chunk` of `chunks`, about equal.
-Range chunk_layers(int layers, int chunk, int chunks) {
-  return {layers * chunk / chunks, layers * (chunk + 1) / chunks};
+// Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
+// share of the z-layers and runs the passes layer after layer, so that a layer is still in
+// cache when the next pass reads it. A chunk's first layer needs the layer before it (another
+// chunk's last) for its edge tensions: they wait for the second barrier. Its first two layers'
+// gathers need those tensions, and those of the layer before, which is the previous chunk's
+// first when that chunk has one layer: they wait for the third. Returns the crushed cells.
+template <typename Barrier>
+int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const Arrays& a, int chunk, int chunks,
+              const Barrier& barrier, Eigen::Matrix3Xd& forces) {
+  const Range nodes = chunk_range(static_cast<int>(grid.point_of_node.size()), chunk, chunks);
+  copy_in(grid, state.positions, a, kPosition, nodes);
+  if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
+  barrier();
+  const LayerPasses passes{grid, a, with_rate};
+  const Range layers = chunk_range(grid.points.z(), chunk, chunks);
+  const bool first_chunk = chunk == 0;
+  int crushed = 0;
+  passes.measure(layers.begin);
+  barrier();
+  for (int slab = layers.begin; slab < layers.end; ++slab) {
+    if (slab + 1 < layers.end) passes.measure(slab + 1);
+    crushed += passes.cells(slab);
+    if (first_chunk || slab > layers.begin) passes.edge_tensions(slab);
+    if (first_chunk || slab > layers.begin + 1) passes.gather(slab);
+  }
+  barrier();
+  if (!first_chunk) passes.edge_tensions(layers.begin);
+  barrier();
+  if (!first_chunk) {
+    passes.gather(layers.begin);
+    if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
+  }
+  barrier();
+  copy_out(grid, a, kForce, nodes, forces);
+  return crushed;
 }
 
 }  // namespace
@@ -416,45 +452,23 @@ int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rat
   const Arrays a(grid, scratch);
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
-  const int slabs = grid.points.z();
-  int crushed = 0;
   // a thread pays for itself from about this many points on (measured with cubespring bench)
   constexpr int kMinPointsPerThread = 4096;
-  [[maybe_unused]] const int team = std::max(1, std::min({threads, slabs, grid.num_points / kMinPointsPerThread}));
-#pragma omp parallel num_threads(team) if (team > 1) reduction(+ : crushed)
+  const int team = std::max(1, std::min({threads, grid.points.z(), grid.num_points / kMinPointsPerThread}));
+  // one thread runs outside any parallel region: entering one, even for one thread, and its
+  // barriers cost 9 us a step, as much as the passes of a 16x4x4 body
+  if (team == 1) return run_chunk(grid, state, with_rate, a, 0, 1, [] {}, forces);
+  int crushed = 0;
+#pragma omp parallel num_threads(team) reduction(+ : crushed)
   {
-    copy_in(grid, state.positions, a, kPosition);
-    if (with_rate) copy_in(grid, state.velocities, a, kVelocity);
-    // Each thread takes a chunk of z-layers and runs the passes layer after layer, so that a layer
-    // is still in cache when the next pass reads it. A chunk's first layer needs the layer before
-    // it (another chunk's last) for its edge tensions: they wait for the second barrier. Its first
-    // two layers' gathers need those tensions, and those of the layer before, which is the
-    // previous chunk's first when that chunk has one layer: they wait for the third.
-    const LayerPasses passes{grid, a, with_rate};
     int chunk = 0, chunks = 1;
 #ifdef _OPENMP
     chunk = omp_get_thread_num();
     chunks = omp_get_num_threads();
 #endif
-    const Range layers = chunk_layers(slabs, chunk, chunks);
-    const bool first_chunk = chunk == 0;
-    passes.measure(layers.begin);
+    crushed += run_chunk(grid, state, with_rate, a, chunk, chunks, [] {
 #pragma omp barrier
-    for (int slab = layers.begin; slab < layers.end; ++slab) {
-      if (slab + 1 < layers.end) passes.measure(slab + 1);
-      crushed += passes.cells(slab);
-      if (first_chunk || slab > layers.begin) passes.edge_tensions(slab);
-      if (first_chunk || slab > layers.begin + 1) passes.gather(slab);
-    }
-#pragma omp barrier
-    if (!first_chunk) passes.edge_tensions(layers.begin);
-#pragma omp barrier
-    if (!first_chunk) {
-      passes.gather(layers.begin);
-      if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
-    }
-#pragma omp barrier
-    copy_out(grid, a, kForce, forces);
+    }, forces);
   }
   return crushed;
 }
