@@ -382,7 +382,7 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
     apply_inversion_forces(model, state.positions, ws, forces);
   }
   const int blocks = num_force_blocks(model);
-  const int threads = std::max(1, std::min(options.threads, blocks));
+  const int threads = std::min(grid_threads(*model.grid_layout, options.threads), blocks);
   const auto finish_block = [&](int b) {
     double fastest_sq = 0.0;
     for (int n = force_block_begin(model, b); n < force_block_end(model, b); ++n) {

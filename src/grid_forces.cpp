@@ -422,7 +422,9 @@ int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const 
   if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
   barrier();
   const LayerPasses passes{grid, a, with_rate};
-  const Range layers = chunk_range(grid.points.z(), chunk, chunks);
+  // the earlier chunks take the odd layer: the later ones have their first layers' deferred work
+  const auto boundary = [&](int k) { return (grid.points.z() * k + chunks - 1) / chunks; };
+  const Range layers{boundary(chunk), boundary(chunk + 1)};
   const bool first_chunk = chunk == 0;
   int crushed = 0;
   passes.measure(layers.begin);
@@ -447,14 +449,17 @@ int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const 
 
 }  // namespace
 
+int grid_threads(const GridLayout& grid, int threads) {
+  constexpr int kMinPointsPerThread = 4096;
+  return std::max(1, std::min({threads, grid.points.z(), grid.num_points / kMinPointsPerThread}));
+}
+
 int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                        std::vector<double>& scratch, Eigen::Matrix3Xd& forces) {
   const Arrays a(grid, scratch);
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
-  // a thread pays for itself from about this many points on (measured with cubespring bench)
-  constexpr int kMinPointsPerThread = 4096;
-  const int team = std::max(1, std::min({threads, grid.points.z(), grid.num_points / kMinPointsPerThread}));
+  const int team = grid_threads(grid, threads);
   // one thread runs outside any parallel region: entering one, even for one thread, and its
   // barriers cost 9 us a step, as much as the passes of a 16x4x4 body
   if (team == 1) return run_chunk(grid, state, with_rate, a, 0, 1, [] {}, forces);

@@ -14,6 +14,10 @@
 
 namespace cubespring {
 
+/// Threads the grid passes use of `threads` asked: one per 4096 points at most, and one per
+/// z-layer (a second thread costs more than it gives on fewer points: cubespring bench).
+int grid_threads(const GridLayout& grid, int threads);
+
 /// Spring, correction and twist forces [N] on every node into `forces` (3 x num_nodes), with the
 /// springs' and correction's Rayleigh damping when with_rate. No inversion recovery, gravity,
 /// loads or mass damping. Returns the number of crushed cells (signed volume below
