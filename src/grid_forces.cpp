@@ -8,6 +8,7 @@
 //   2. cells: mean edge strains -> correction tension per axis (docs/model-baudet2007.md
 //      section 3); signed volume of the mean edge vectors -> crushed cells (section 5);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
+//   2b, 3b. the exact-bending twist, by faces (below), when the body has it;
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads share
 //      nothing and the sums do not depend on the thread count).

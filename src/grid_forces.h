@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// The internal forces of a body on its dense grid (grid_layout.h): the same springs, correction
-// and crushed-cell test as the spring-list passes of forces.cpp, with springs found by index
+// The internal forces of a body on its dense grid (grid_layout.h): the same springs, correction,
+// twist and crushed-cell test as the spring-list passes of forces.cpp, with springs found by index
 // arithmetic (docs/data-layout.md, "Dense bodies: the grid passes").
 #pragma once
 
