@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "cubespring/forces.h"
 
@@ -390,8 +391,8 @@ struct LayerPasses {
 
 // Part `chunk` of `chunks` of [0, count), about equal.
 Range chunk_range(int count, int chunk, int chunks) {
-  return {static_cast<int>(static_cast<long>(count) * chunk / chunks),
-          static_cast<int>(static_cast<long>(count) * (chunk + 1) / chunks)};
+  return {static_cast<int>(static_cast<std::int64_t>(count) * chunk / chunks),
+          static_cast<int>(static_cast<std::int64_t>(count) * (chunk + 1) / chunks)};
 }
 
 // Values of the nodes in `nodes` (of 3 x num_nodes) into the grid arrays slot .. slot + 2.
@@ -412,9 +413,10 @@ void copy_out(const GridLayout& grid, const Arrays& a, int slot, const Range& no
 // Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
 // share of the z-layers and runs the passes layer after layer, so that a layer is still in
 // cache when the next pass reads it. A chunk's first layer needs the layer before it (another
-// chunk's last) for its edge tensions: they wait for the second barrier. Its first two layers'
-// gathers need those tensions, and those of the layer before, which is the previous chunk's
-// first when that chunk has one layer: they wait for the third. Returns the crushed cells.
+// chunk's last) for its edge tensions: they wait for the barrier after the layer loop. Its first
+// two layers' gathers need those tensions, and those of the layer before, which is the previous
+// chunk's first when that chunk has one layer: they wait for the barrier after the deferred
+// tensions. Returns the crushed cells.
 template <typename Barrier>
 int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const Arrays& a, int chunk, int chunks,
               const Barrier& barrier, Eigen::Matrix3Xd& forces) {
