@@ -18,6 +18,19 @@ namespace {
 using test::elastic_forces;
 using test::notes_material;
 
+// The middle cell of a body, and a state 1 mm and 0.1 m/s off rest at random; crushed: that
+// cell's top face also pushed 1.5 cm down, through its bottom face, so the inversion recovery acts.
+int middle_cell(const Model& model) { return model.num_cells() / 2; }
+State disturbed_state(const Model& model, bool crushed) {
+  State state = rest_state(model);
+  state.positions = test::perturbed(model, 1e-3);
+  state.velocities = test::perturbed(model, 0.1) - model.rest_positions;
+  if (crushed) {
+    for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[middle_cell(model)][corner]) -= 0.015;
+  }
+  return state;
+}
+
 TEST(Forces, RestStateIsInEquilibrium) {
   const Model model = test::box_model({3, 2, 2}, notes_material(0.45));
   EXPECT_LT(elastic_forces(model, model.rest_positions).cwiseAbs().maxCoeff(), 1e-12);
@@ -145,25 +158,21 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
       Result<Model> built = build_model(desc);
       ASSERT_TRUE(built.ok()) << built.message();
       for (const bool lists : {false, true}) {  // the grid passes where the body has them, and the lists
-      Model model = built.value();
-      if (lists) model.grid_layout.reset();
-      ASSERT_GE(model.force_block_nodes.size(), 3u) << name << ": too few springs for 2 blocks";
-      State state = rest_state(model);
-      state.positions = test::perturbed(model, 1e-3);
-      state.velocities = test::perturbed(model, 0.1) - model.rest_positions;
-      if (crushed) {  // the middle cell's top face pushed through its bottom face
-        const int c = model.num_cells() / 2;
-        for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[c][corner]) -= 0.015;
-        ASSERT_LT(cell_signed_volume(model, state.positions, c), 0.0) << name;
-      }
-      Loads loads;
-      loads.gravity = {0, 0, -9.81};
-      ForceWorkspace ws;
-      Eigen::Matrix3Xd one, two;
-      compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
-      compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
-      EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0)
-          << name << (crushed ? ", crushed" : "") << (lists ? ", spring lists" : "");
+        Model model = built.value();
+        if (lists) model.grid_layout.reset();
+        ASSERT_GE(model.force_block_nodes.size(), 3u) << name << ": too few springs for 2 blocks";
+        const State state = disturbed_state(model, crushed);
+        if (crushed) {
+          ASSERT_LT(cell_signed_volume(model, state.positions, middle_cell(model)), 0.0) << name;
+        }
+        Loads loads;
+        loads.gravity = {0, 0, -9.81};
+        ForceWorkspace ws;
+        Eigen::Matrix3Xd one, two;
+        compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+        compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+        EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0)
+            << name << (crushed ? ", crushed" : "") << (lists ? ", spring lists" : "");
       }
     }
   }
@@ -185,11 +194,7 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
     Model whole = blocked;
     whole.force_block_nodes.clear();  // one block of every node
     whole.force_block_reach.clear();
-    State state = rest_state(blocked);
-    state.positions = test::perturbed(blocked, 1e-3);
-    state.velocities = test::perturbed(blocked, 0.1) - blocked.rest_positions;
-    const int c = blocked.num_cells() / 2;  // a crushed cell too
-    for (int corner = 4; corner < 8; ++corner) state.positions(2, blocked.cell_nodes[c][corner]) -= 0.015;
+    const State state = disturbed_state(blocked, true);  // a crushed cell too
     Loads loads;
     loads.gravity = {0, 0, -9.81};
     ForceWorkspace blocked_ws, whole_ws;
@@ -238,13 +243,9 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
     Model lists = grid;
     lists.grid_layout.reset();
     for (const bool crushed : {false, true}) {
-      State state = rest_state(grid);
-      state.positions = test::perturbed(grid, 1e-3);
-      state.velocities = test::perturbed(grid, 0.1) - grid.rest_positions;
+      State state = disturbed_state(grid, crushed);
       if (crushed) {
-        const int c = grid.num_cells() / 2;
-        for (int corner = 4; corner < 8; ++corner) state.positions(2, grid.cell_nodes[c][corner]) -= 0.015;
-        ASSERT_LT(cell_signed_volume(grid, state.positions, c), 0.0) << name;
+        ASSERT_LT(cell_signed_volume(grid, state.positions, middle_cell(grid)), 0.0) << name;
         const auto& ends = grid.spring_nodes[grid.num_springs() / 3];
         state.positions.col(ends[1]) = state.positions.col(ends[0]);
       }
@@ -283,11 +284,7 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
     ASSERT_NE(grid.grid_layout, nullptr) << name;
     Model lists = grid;
     lists.grid_layout.reset();
-    State state = rest_state(grid);
-    state.positions = test::perturbed(grid, 1e-3);
-    state.velocities = test::perturbed(grid, 0.1) - grid.rest_positions;
-    const int c = grid.num_cells() / 2;
-    for (int corner = 4; corner < 8; ++corner) state.positions(2, grid.cell_nodes[c][corner]) -= 0.015;
+    const State state = disturbed_state(grid, true);
     Loads loads;
     loads.gravity = {0, 0, -9.81};
     ForceWorkspace ws;
