@@ -12,6 +12,9 @@
 
 namespace cubespring {
 
+/// Grid offset of corner c from the cell's corner 0 (model.h: bit a of c is the offset along a).
+inline Eigen::Vector3i corner_offset(int corner) { return {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1}; }
+
 /// side(corner, axis) = +1 when the corner is on the + side of the cell along that axis, else -1.
 inline double corner_side(int corner, int axis) { return (corner >> axis) & 1 ? 1.0 : -1.0; }
 

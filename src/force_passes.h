@@ -11,6 +11,10 @@
 
 namespace cubespring {
 
+/// Springs shorter than this fraction of their rest length have no direction and give no force
+/// (the spring lists and the grid passes alike).
+inline constexpr double kDegenerateLengthFraction = 1e-12;
+
 /// Fills ws.spring_length, ws.cell_tension and ws.spring_tension (no damping) at positions x.
 void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorkspace& ws);
 

@@ -34,9 +34,6 @@
 namespace cubespring {
 namespace {
 
-// Springs shorter than this fraction of their rest length have no direction and give no force.
-constexpr double kDegenerateLengthFraction = 1e-12;
-
 // Pass 1 for spring s alone (the tail of a block).
 template <bool kWithRate>
 inline void measure_spring(const Model& model, const Eigen::Matrix3Xd& x, const Eigen::Matrix3Xd& v, int s,

@@ -21,6 +21,7 @@
 #include <cstdint>
 
 #include "cubespring/forces.h"
+#include "force_passes.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -37,10 +38,6 @@ namespace {
 #else
 #define CUBESPRING_VECTOR_CLONES
 #endif
-
-// Springs shorter than this fraction of their rest length have no direction and give no force
-// (as in forces.cpp).
-constexpr double kDegenerateLengthFraction = 1e-12;
 
 // Scratch arrays, each padded by grid.padding points on both sides.
 enum Slot : int {

@@ -4,11 +4,10 @@
 
 #include <cmath>
 
+#include "cell_geometry.h"
+
 namespace cubespring {
 namespace {
-
-// Grid step of corner c of a cell (model.h: bit a of c is the offset along axis a).
-Eigen::Vector3i corner_step(int corner) { return {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1}; }
 
 // The family of a spring from its two nodes' grid step, -1 if no family has it.
 int family_of_step(const Eigen::Vector3i& step) {
@@ -16,7 +15,7 @@ int family_of_step(const Eigen::Vector3i& step) {
     if (step == Eigen::Vector3i::Unit(axis)) return axis;
   }
   for (int k = 0; k < 4; ++k) {
-    if (step == corner_step(7 - k) - corner_step(k)) return kEdgeFamilies + k;
+    if (step == corner_offset(7 - k) - corner_offset(k)) return kEdgeFamilies + k;
   }
   return -1;
 }
@@ -71,7 +70,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
       family.slabs = f == 2 ? cells.z() : grid.points.z();
     } else {
       const int k = f - kEdgeFamilies;
-      const Eigen::Vector3i from = corner_step(k), to = corner_step(7 - k);
+      const Eigen::Vector3i from = corner_offset(k), to = corner_offset(7 - k);
       family.from = from.x() + grid.stride_y * from.y() + grid.stride_z * from.z();
       family.to = to.x() + grid.stride_y * to.y() + grid.stride_z * to.z();
       family.rest_length = model.cell_size.norm();

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cell_geometry.h"
 #include "cubespring/forces.h"
 #include "force_blocks.h"
 #include "grid_layout.h"
@@ -25,8 +26,6 @@ std::int64_t grid_key(const Eigen::Vector3i& index) {
   return ((index.z() + kAxisOffset) << (2 * kAxisBits)) | ((index.y() + kAxisOffset) << kAxisBits) |
          (index.x() + kAxisOffset);
 }
-
-Eigen::Vector3i corner_offset(int corner) { return {corner & 1, (corner >> 1) & 1, (corner >> 2) & 1}; }
 
 Status check_desc(const LatticeDesc& desc) {
   if (!desc.cell_size.allFinite() || desc.cell_size.minCoeff() <= 0.0) {
