@@ -346,32 +346,36 @@ struct NodeLoads {
   const Model& model;
   const State& state;
   const Loads& loads;
-  bool with_mass_damping, with_gravity, with_nodal;
+  bool with_mass_damping, with_nodal;
 
   NodeLoads(const Model& m, const State& s, const Loads& l, const ForceOptions& options)
       : model(m), state(s), loads(l), with_mass_damping(options.damping && m.has_mass_damping),
-        with_gravity(!l.gravity.isZero()), with_nodal(l.nodal_forces.cols() == m.num_nodes()) {}
+        with_nodal(l.nodal_forces.cols() == m.num_nodes()) {}
 
+  // (gravity added even when zero: the grid's kick, grid_kick.cpp, vectorises without a branch)
   void add(int n, Eigen::Matrix3Xd& forces) const {
     if (with_mass_damping) forces.col(n) -= model.mass_damping[n] * state.velocities.col(n);
-    if (with_gravity) forces.col(n) += model.mass[n] * loads.gravity;
+    forces.col(n) += model.mass[n] * loads.gravity;
     if (with_nodal) forces.col(n) += loads.nodal_forces.col(n);
   }
 };
 
 // The forces of a body on its dense grid (grid_forces.h), then the inversion recovery and
-// finish(n) of every node, the nodes cut into the force blocks. Returns what run_passes does.
+// finish(n) of every node, the nodes cut into the force blocks. `kick`, when given, is finish's
+// kick, which the grid passes do themselves when no cell is crushed. Returns what run_passes does.
 template <typename Finish>
 double grid_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
-                   Eigen::Matrix3Xd& forces, const Finish& finish) {
+                   Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick) {
   prepare(model, ws, forces);
   if (ws.grid_arrays_layout != model.grid_layout) {  // another body's arrays: start afresh
     ws.grid_arrays.clear();
     ws.grid_arrays_layout = model.grid_layout;
   }
   const bool with_rate = options.damping && model.has_stiffness_damping;
-  const int crushed = grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces);
-  if (crushed > 0) {
+  const GridForces grid =
+      grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces, kick);
+  if (grid.kicked) return grid.fastest_sq;
+  if (grid.crushed > 0) {
     const double crushed_volume = kCrushedVolumeFraction * model.rest_cell_volume();
     for (int c = 0; c < model.num_cells(); ++c) {
       ws.cell_crushed[c] = cell_signed_volume(model, state.positions, c) < crushed_volume;
@@ -400,8 +404,8 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
 
 template <typename Finish>
 double force_sweep(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
-                   Eigen::Matrix3Xd& forces, const Finish& finish) {
-  if (model.grid_layout) return grid_passes(model, state, options, ws, forces, finish);
+                   Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick = nullptr) {
+  if (model.grid_layout) return grid_passes(model, state, options, ws, forces, finish, kick);
   return model.has_twist ? run_passes<true>(model, state, options, ws, forces, finish)
                          : run_passes<false>(model, state, options, ws, forces, finish);
 }
@@ -446,13 +450,17 @@ double compute_forces_and_kick(const Model& model, const State& state, const Loa
   const NodeLoads node_loads(model, state, loads, options);
   const State& from = *kick.from;
   State& to = *kick.to;
-  return force_sweep(model, state, options, ws, forces, [&](int n) {
-    node_loads.add(n, forces);
-    const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
-    to.velocities.col(n) = v;
-    to.positions.col(n) = from.positions.col(n) + kick.drift * v;
-    return v.squaredNorm();
-  });
+  const GridKick grid_kick{model, state, loads, node_loads.with_mass_damping, kick};
+  return force_sweep(
+      model, state, options, ws, forces,
+      [&](int n) {
+        node_loads.add(n, forces);
+        const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
+        to.velocities.col(n) = v;
+        to.positions.col(n) = from.positions.col(n) + kick.drift * v;
+        return v.squaredNorm();
+      },
+      &grid_kick);
 }
 
 double cell_signed_volume(const Model& model, const Eigen::Matrix3Xd& positions, int cell) {

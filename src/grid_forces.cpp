@@ -22,6 +22,7 @@
 
 #include "cubespring/forces.h"
 #include "force_passes.h"
+#include "vector_clones.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -29,15 +30,6 @@
 
 namespace cubespring {
 namespace {
-
-// The passes are built for AVX-512 and AVX2 beside the baseline, and the loader picks the one the
-// CPU runs. Every variant gives the same bits: the loops are lane by lane, with no sums across
-// lanes and no fused multiply-adds (-ffp-contract=off, CMakeLists.txt).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define CUBESPRING_VECTOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define CUBESPRING_VECTOR_CLONES
-#endif
 
 // Scratch arrays, each padded by grid.padding points on both sides.
 enum Slot : int {
@@ -197,7 +189,7 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
   const double* position[3] = {a[kPosition], a[kPosition + 1], a[kPosition + 2]};
   const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};
   int crushed = 0;
-#pragma omp simd reduction(+ : crushed)
+#pragma omp simd
   for (int g = range.begin; g < range.end; ++g) {
     double ex = edge_sum(lx, g, sy, sz) * ix - 1.0;
     double ey = edge_sum(ly, g, 1, sz) * iy - 1.0;
@@ -210,7 +202,10 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
     tension_x[g] = tx * (dxx[g] * ex + dxy[g] * ey + dxz[g] * ez);
     tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
     tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
-
+  }
+  // a loop of its own: together, the two need more vector registers than there are
+#pragma omp simd reduction(+ : crushed)
+  for (int g = range.begin; g < range.end; ++g) {
     // 4 x each mean edge vector: the sum of the cell's 4 edges along that axis
     double mean[3][3];  // [edge axis][component]
 #pragma GCC unroll 3
@@ -407,16 +402,30 @@ void copy_out(const GridLayout& grid, const Arrays& a, int slot, const Range& no
   }
 }
 
+// What the chunks share besides the arrays: their crushed cells, and their nodes' fastest
+// squared speed when they kick.
+struct ChunkResults {
+  std::vector<int> crushed;
+  std::vector<double> fastest_sq;
+  explicit ChunkResults(int chunks) : crushed(chunks, 0), fastest_sq(chunks, 0.0) {}
+  int total_crushed() const {
+    int total = 0;
+    for (int c : crushed) total += c;
+    return total;
+  }
+};
+
 // Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
 // share of the z-layers and runs the passes layer after layer, so that a layer is still in
 // cache when the next pass reads it. A chunk's first layer needs the layer before it (another
 // chunk's last) for its edge tensions: they wait for the barrier after the layer loop. Its first
 // two layers' gathers need those tensions, and those of the layer before, which is the previous
 // chunk's first when that chunk has one layer: they wait for the barrier after the deferred
-// tensions. Returns the crushed cells.
+// tensions. Then each chunk finishes a share of the nodes: the kick when asked and no cell of the
+// body is crushed (their recovery comes first, on the caller's side), else the forces alone.
 template <typename Barrier>
-int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const Arrays& a, int chunk, int chunks,
-              const Barrier& barrier, Eigen::Matrix3Xd& forces) {
+void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Arrays& a,
+               int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
   const Range nodes = chunk_range(static_cast<int>(grid.point_of_node.size()), chunk, chunks);
   copy_in(grid, state.positions, a, kPosition, nodes);
   if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
@@ -435,6 +444,7 @@ int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const 
     if (first_chunk || slab > layers.begin) passes.edge_tensions(slab);
     if (first_chunk || slab > layers.begin + 1) passes.gather(slab);
   }
+  results.crushed[chunk] = crushed;
   barrier();
   if (!first_chunk) passes.edge_tensions(layers.begin);
   barrier();
@@ -443,8 +453,13 @@ int run_chunk(const GridLayout& grid, const State& state, bool with_rate, const 
     if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
   }
   barrier();
-  copy_out(grid, a, kForce, nodes, forces);
-  return crushed;
+  if (kick != nullptr && results.total_crushed() == 0) {
+    const double* force[3] = {a[kForce], a[kForce + 1], a[kForce + 2]};
+    results.fastest_sq[chunk] =
+        kick_grid_nodes(*kick, grid.point_of_node.data(), force, nodes.begin, nodes.end, forces);
+  } else {
+    copy_out(grid, a, kForce, nodes, forces);
+  }
 }
 
 }  // namespace
@@ -454,28 +469,35 @@ int grid_threads(const GridLayout& grid, int threads) {
   return std::max(1, std::min({threads, grid.points.z(), grid.num_points / kMinPointsPerThread}));
 }
 
-int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
-                       std::vector<double>& scratch, Eigen::Matrix3Xd& forces) {
+GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
+                              std::vector<double>& scratch, Eigen::Matrix3Xd& forces, const GridKick* kick) {
   const Arrays a(grid, scratch);
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   const int team = grid_threads(grid, threads);
+  ChunkResults results(team);
   // one thread runs outside any parallel region: entering one, even for one thread, and its
   // barriers cost 9 us a step, as much as the passes of a 16x4x4 body
-  if (team == 1) return run_chunk(grid, state, with_rate, a, 0, 1, [] {}, forces);
-  int crushed = 0;
-#pragma omp parallel num_threads(team) reduction(+ : crushed)
-  {
-    int chunk = 0, chunks = 1;
+  if (team == 1) {
+    run_chunk(grid, state, with_rate, kick, a, 0, 1, [] {}, results, forces);
+  } else {
+#pragma omp parallel num_threads(team)
+    {
+      int chunk = 0, chunks = 1;
 #ifdef _OPENMP
-    chunk = omp_get_thread_num();
-    chunks = omp_get_num_threads();
+      chunk = omp_get_thread_num();
+      chunks = omp_get_num_threads();
 #endif
-    crushed += run_chunk(grid, state, with_rate, a, chunk, chunks, [] {
+      run_chunk(grid, state, with_rate, kick, a, chunk, chunks, [] {
 #pragma omp barrier
-    }, forces);
+      }, results, forces);
+    }
   }
-  return crushed;
+  GridForces out;
+  out.crushed = results.total_crushed();
+  out.kicked = kick != nullptr && out.crushed == 0;
+  for (double fastest_sq : results.fastest_sq) out.fastest_sq = faster(fastest_sq, out.fastest_sq);
+  return out;
 }
 
 }  // namespace cubespring

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "cubespring/state.h"
+#include "grid_kick.h"
 #include "grid_layout.h"
 
 namespace cubespring {
@@ -18,13 +19,21 @@ namespace cubespring {
 /// z-layer (a second thread costs more than it gives on fewer points: cubespring bench).
 int grid_threads(const GridLayout& grid, int threads);
 
+/// What grid_spring_forces() did.
+struct GridForces {
+  int crushed = 0;         ///< cells with signed volume below kCrushedVolumeFraction of the rest volume
+  bool kicked = false;     ///< the kick was asked and done (no cell crushed)
+  double fastest_sq = 0.0;  ///< when kicked: the largest squared speed [m^2/s^2], NaN if not finite
+};
+
 /// Spring, correction and twist forces [N] on every node into `forces` (3 x num_nodes), with the
-/// springs' and correction's Rayleigh damping when with_rate. No inversion recovery, gravity,
-/// loads or mass damping. Returns the number of crushed cells (signed volume below
-/// kCrushedVolumeFraction of the rest volume), for the caller to add their recovery.
-/// `scratch` keeps the grid's arrays between calls; clear it before using it with another layout
-/// (entries the passes never write must stay as first set).
-int grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
-                       std::vector<double>& scratch, Eigen::Matrix3Xd& forces);
+/// springs' and correction's Rayleigh damping when with_rate. No inversion recovery. When `kick`
+/// is given and no cell is crushed, the forces also get the loads and mass damping and the nodes
+/// their kick (grid_kick.h); when cells are crushed, the caller adds their recovery, loads and
+/// kick. `scratch` keeps the grid's arrays between calls; clear it before using it with another
+/// layout (entries the passes never write must stay as first set).
+GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
+                              std::vector<double>& scratch, Eigen::Matrix3Xd& forces,
+                              const GridKick* kick = nullptr);
 
 }  // namespace cubespring

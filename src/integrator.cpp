@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 
 #include <Eigen/IterativeLinearSolvers>
@@ -15,11 +17,21 @@ namespace {
 
 // Driven nodes reach their target at the end of the step with the velocity that gets them there.
 void drive_nodes(const Constraints& constraints, double dt, const State& start, State& end) {
-  if (constraints.num_nodes() == 0) return;
-  for (int n = 0; n < constraints.num_nodes(); ++n) {
-    if (!constraints.is_driven(n)) continue;
-    end.positions.col(n) = constraints.target(n);
-    end.velocities.col(n) = (constraints.target(n) - start.positions.col(n)) / dt;
+  const std::uint8_t* driven = constraints.driven_flags();
+  const int num_nodes = constraints.num_nodes();
+  constexpr int kWord = sizeof(std::uint64_t);
+  for (int first = 0; first < num_nodes; first += kWord) {
+    const int last = std::min(first + kWord, num_nodes);
+    if (last - first == kWord) {  // most nodes are free: skip them a word of flags at a time
+      std::uint64_t word;
+      std::memcpy(&word, driven + first, sizeof word);
+      if (word == 0) continue;
+    }
+    for (int n = first; n < last; ++n) {
+      if (driven[n] == 0) continue;
+      end.positions.col(n) = constraints.target(n);
+      end.velocities.col(n) = (constraints.target(n) - start.positions.col(n)) / dt;
+    }
   }
 }
 
@@ -71,7 +83,8 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
 StepReport Stepper::check(const Model& model, const StepSettings& settings, double fastest,
                           const State& candidate) const {
   const double limit = settings.speed_limit > 0.0 ? settings.speed_limit : 10.0 * max_wave_speed(model);
-  if (!std::isfinite(fastest) || !candidate.positions.allFinite()) {
+  // x - x is 0 for a finite x and NaN otherwise; its sum is a vectorised allFinite()
+  if (!std::isfinite(fastest) || !std::isfinite((candidate.positions - candidate.positions).sum())) {
     return {StepStatus::kUnstable, "positions or velocities became NaN or infinite"};
   }
   if (fastest > limit) {

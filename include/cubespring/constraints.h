@@ -40,6 +40,8 @@ class Constraints {
   int num_driven() const;
   bool empty() const { return num_driven() == 0; }
   int num_nodes() const { return static_cast<int>(driven_.size()); }
+  /// One flag per node, non-zero when driven (num_nodes() of them).
+  const std::uint8_t* driven_flags() const { return driven_.data(); }
 
  private:
   Status check_index(int node) const;

@@ -1,0 +1,73 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "grid_kick.h"
+
+#include <limits>
+
+#include "vector_clones.h"
+
+namespace cubespring {
+namespace {
+
+// The sweep, for bodies with and without mass damping and nodal loads (arrays that may be empty,
+// so their reads cannot hide behind a select).
+template <bool kMassDamping, bool kNodal>
+CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restrict point_of_node,
+                                           const double* const spring_force[3], int begin, int end,
+                                           double* __restrict forces) {
+  const double* __restrict fx = spring_force[0];
+  const double* __restrict fy = spring_force[1];
+  const double* __restrict fz = spring_force[2];
+  const double* __restrict mass = k.model.mass.data();
+  const double* __restrict mass_damping = k.model.mass_damping.data();
+  const double* __restrict damped_velocity = k.state.velocities.data();
+  const double* __restrict nodal = k.loads.nodal_forces.data();
+  const double* __restrict v0 = k.kick.from->velocities.data();
+  const double* __restrict x0 = k.kick.from->positions.data();
+  double* __restrict v1 = k.kick.to->velocities.data();
+  double* __restrict x1 = k.kick.to->positions.data();
+  const double gravity[3] = {k.loads.gravity.x(), k.loads.gravity.y(), k.loads.gravity.z()};
+  const double kick = k.kick.kick, drift = k.kick.drift;
+  double fastest_sq = 0.0;
+  int not_finite = 0;
+#pragma omp simd reduction(max : fastest_sq) reduction(+ : not_finite)
+  for (int n = begin; n < end; ++n) {
+    const int g = point_of_node[n];
+    const double spring[3] = {fx[g], fy[g], fz[g]};
+    const double m = mass[n];
+    const double rate = kick / m;
+    double speed_sq = 0.0;
+#pragma GCC unroll 3
+    for (int axis = 0; axis < 3; ++axis) {
+      const int i = 3 * n + axis;
+      double f = spring[axis];
+      if constexpr (kMassDamping) f -= mass_damping[n] * damped_velocity[i];
+      f += m * gravity[axis];
+      if constexpr (kNodal) f += nodal[i];
+      forces[i] = f;
+      const double v = v0[i] + rate * f;
+      v1[i] = v;
+      x1[i] = x0[i] + drift * v;
+      speed_sq += v * v;
+    }
+    not_finite += static_cast<int>(!(speed_sq <= std::numeric_limits<double>::max()));
+    fastest_sq = fastest_sq > speed_sq ? fastest_sq : speed_sq;
+  }
+  return not_finite > 0 ? std::numeric_limits<double>::quiet_NaN() : fastest_sq;
+}
+
+}  // namespace
+
+double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
+                       int begin, int end, Eigen::Matrix3Xd& forces) {
+  const bool nodal = kick.loads.nodal_forces.cols() == kick.model.num_nodes();
+  double* out = forces.data();
+  if (kick.mass_damping) {
+    return nodal ? kick_nodes<true, true>(kick, point_of_node, spring_force, begin, end, out)
+                 : kick_nodes<true, false>(kick, point_of_node, spring_force, begin, end, out);
+  }
+  return nodal ? kick_nodes<false, true>(kick, point_of_node, spring_force, begin, end, out)
+               : kick_nodes<false, false>(kick, point_of_node, spring_force, begin, end, out);
+}
+
+}  // namespace cubespring

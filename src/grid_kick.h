@@ -1,0 +1,34 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The kick of compute_forces_and_kick (forces.cpp) for nodes whose spring forces the grid passes
+// left in their arrays, as one vectorised sweep instead of a call per node.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "cubespring/forces.h"
+#include "cubespring/model.h"
+#include "cubespring/state.h"
+#include "force_passes.h"
+
+namespace cubespring {
+
+/// What the kick needs besides the spring forces: the loads and mass damping at `state`, and the
+/// kick-drift from kick.from into kick.to.
+struct GridKick {
+  const Model& model;
+  const State& state;
+  const Loads& loads;
+  bool mass_damping;
+  KickDrift kick;
+};
+
+/// Nodes [begin, end), whose spring forces [N] are at spring_force[axis][point_of_node[n]]: each
+/// force gets its mass damping, gravity and nodal load, in the order and with the bits of the
+/// spring lists' finish (forces.cpp, NodeLoads), into `forces`; then v' = v0 + (kick / m) f and
+/// x' = x0 + drift v' into kick.to. Returns the largest squared speed [m^2/s^2], NaN if a speed
+/// is not finite.
+double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
+                       int begin, int end, Eigen::Matrix3Xd& forces);
+
+}  // namespace cubespring
