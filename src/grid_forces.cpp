@@ -8,7 +8,8 @@
 //   2. cells: mean edge strains -> correction tension per axis (docs/model-baudet2007.md
 //      section 3); signed volume of the mean edge vectors -> crushed cells (section 5);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
-//   2b, 3b. the exact-bending twist, by faces (below), when the body has it;
+//   2b, 3b. the exact-bending twist, by faces (below), when the body has it: its cells' coefficients
+//      in pass 2 (from the corner positions the crushed test reads), its edge forces after pass 3;
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads share
 //      nothing and the sums do not depend on the thread count).
@@ -158,8 +159,23 @@ inline double edge_sum(const double* v, int g, int step_b, int step_c) {
   return (v[g] + v[g + step_b]) + (v[g + step_c] + v[g + step_b + step_c]);
 }
 
-// Pass 2 on one z-layer of cells; returns its crushed cells.
-template <bool kWithRate>
+// The twist of the exact-bending model (docs/model-exact-bending.md section 3; the same terms as
+// src/twist.h, arranged by faces of the grid). A cell's two faces normal to d (in-plane axes
+// a < c) have mean edge vectors a_s, c_s (s = lower, upper); w_d = (a_u . c_u - a_l . c_l) / h^2
+// and Q_d = k h w_d / 2. The a-edges of a face get the force -Q_d c_l (lower face of the cell) or
+// +Q_d c_u (upper face) on their lower corner, the c-edges -Q_d a_l or +Q_d a_u. A face is the
+// upper face of one cell and the lower of the next along d, so an edge gets, from each face F it
+// lies on, (Q_d[F - step d] - Q_d[F]) times the face's mean of its other in-plane edges.
+
+// Q_d of a cell from 4 x its faces' dot products (cell_pass).
+inline double twist_coefficient(double lower_4, double upper_4, double stiffness, double h) {
+  const double lower = 0.25 * lower_4, upper = 0.25 * upper_4;
+  return 0.5 * stiffness * h * ((upper - lower) / (h * h));
+}
+
+// Pass 2 on one z-layer of cells; returns its crushed cells. With kTwist, also the cells' twist
+// coefficients (above), from the corner positions the crushed test reads anyway.
+template <bool kWithRate, bool kTwist>
 CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const Arrays& a) {
   const Range range = layer_range(grid, slab, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
@@ -204,10 +220,18 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
     tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
   }
   // a loop of its own: together, the two need more vector registers than there are
+  const double* __restrict twist_stiffness = kTwist ? grid.cell_twist.data() : nullptr;
+  double* __restrict qx = a[kCellTwist];
+  double* __restrict qy = a[kCellTwist + 1];
+  double* __restrict qz = a[kCellTwist + 2];
+  const double h = grid.cell_size.x();
 #pragma omp simd reduction(+ : crushed)
   for (int g = range.begin; g < range.end; ++g) {
     // 4 x each mean edge vector: the sum of the cell's 4 edges along that axis
     double mean[3][3];  // [edge axis][component]
+    // 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y, z,
+    // lower and upper (twist_coefficient)
+    double x_lower = 0.0, x_upper = 0.0, y_lower = 0.0, y_upper = 0.0, z_lower = 0.0, z_upper = 0.0;
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
       const double* p = position[c];
@@ -216,12 +240,25 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
       mean[0][c] = ((p1 - p0) + (p3 - p2)) + ((p5 - p4) + (p7 - p6));
       mean[1][c] = ((p2 - p0) + (p3 - p1)) + ((p6 - p4) + (p7 - p5));
       mean[2][c] = ((p4 - p0) + (p5 - p1)) + ((p6 - p2) + (p7 - p3));
+      if constexpr (kTwist) {  // a face's a-edges times its c-edges (a < c its in-plane axes)
+        x_lower += ((p2 - p0) + (p6 - p4)) * ((p4 - p0) + (p6 - p2));
+        x_upper += ((p3 - p1) + (p7 - p5)) * ((p5 - p1) + (p7 - p3));
+        y_lower += ((p1 - p0) + (p5 - p4)) * ((p4 - p0) + (p5 - p1));
+        y_upper += ((p3 - p2) + (p7 - p6)) * ((p6 - p2) + (p7 - p3));
+        z_lower += ((p1 - p0) + (p3 - p2)) * ((p2 - p0) + (p3 - p1));
+        z_upper += ((p5 - p4) + (p7 - p6)) * ((p6 - p4) + (p7 - p5));
+      }
     }
     const double mxx = mean[0][0], mxy = mean[0][1], mxz = mean[0][2];
     const double myx = mean[1][0], myy = mean[1][1], myz = mean[1][2];
     const double mzx = mean[2][0], mzy = mean[2][1], mzz = mean[2][2];
     const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
     crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
+    if constexpr (kTwist) {
+      qx[g] = twist_coefficient(x_lower, x_upper, twist_stiffness[g], h);
+      qy[g] = twist_coefficient(y_lower, y_upper, twist_stiffness[g], h);
+      qz[g] = twist_coefficient(z_lower, z_upper, twist_stiffness[g], h);
+    }
   }
   return crushed;
 }
@@ -245,49 +282,6 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
     fx[g] *= total;
     fy[g] *= total;
     fz[g] *= total;
-  }
-}
-
-// The twist of the exact-bending model (docs/model-exact-bending.md section 3; the same terms as
-// src/twist.h, arranged by faces of the grid). A cell's two faces normal to d (in-plane axes
-// a < c) have mean edge vectors a_s, c_s (s = lower, upper); w_d = (a_u . c_u - a_l . c_l) / h^2
-// and Q_d = k h w_d / 2. The a-edges of a face get the force -Q_d c_l (lower face of the cell) or
-// +Q_d c_u (upper face) on their lower corner, the c-edges -Q_d a_l or +Q_d a_u. A face is the
-// upper face of one cell and the lower of the next along d, so an edge gets, from each face F it
-// lies on, (Q_d[F - step d] - Q_d[F]) times the face's mean of its other in-plane edges.
-
-// Pass 2b, twist only: Q_d of every cell of one z-layer.
-template <int d>
-inline double twist_coefficient(const Arrays& a, const int* steps, int g, double stiffness, double h) {
-  constexpr int a_axis = d == 0 ? 1 : 0, c_axis = d == 2 ? 1 : 2;
-  const int sa = steps[a_axis], sc = steps[c_axis];
-  // a face's a-edges start at F and F + sc, its c-edges at F and F + sa; 4 x their dot product
-  auto face = [&](int f) {
-    double dot = 0.0;
-    for (int axis = 0; axis < 3; ++axis) {
-      const double* av = a[kEdgeVector + 3 * a_axis + axis];
-      const double* cv = a[kEdgeVector + 3 * c_axis + axis];
-      dot += (av[f] + av[f + sc]) * (cv[f] + cv[f + sa]);
-    }
-    return dot;
-  };
-  const double lower = 0.25 * face(g), upper = 0.25 * face(g + steps[d]);
-  return 0.5 * stiffness * h * ((upper - lower) / (h * h));
-}
-
-CUBESPRING_VECTOR_CLONES void twist_cell_pass(const GridLayout& grid, int slab, const Arrays& a) {
-  const Range range = layer_range(grid, slab, grid.cell_rows);
-  const int steps[3] = {1, grid.stride_y, grid.stride_z};
-  const double h = grid.cell_size.x();
-  const double* __restrict stiffness = grid.cell_twist.data();
-  double* __restrict qx = a[kCellTwist];
-  double* __restrict qy = a[kCellTwist + 1];
-  double* __restrict qz = a[kCellTwist + 2];
-#pragma omp simd
-  for (int g = range.begin; g < range.end; ++g) {
-    qx[g] = twist_coefficient<0>(a, steps, g, stiffness[g], h);
-    qy[g] = twist_coefficient<1>(a, steps, g, stiffness[g], h);
-    qz[g] = twist_coefficient<2>(a, steps, g, stiffness[g], h);
   }
 }
 
@@ -369,8 +363,8 @@ struct LayerPasses {
   }
   int cells(int slab) const {  // needs measure(slab) and measure(slab + 1)
     if (slab >= grid.cell_slabs) return 0;
-    if (grid.has_twist) twist_cell_pass(grid, slab, a);
-    return with_rate ? cell_pass<true>(grid, slab, a) : cell_pass<false>(grid, slab, a);
+    if (grid.has_twist) return with_rate ? cell_pass<true, true>(grid, slab, a) : cell_pass<false, true>(grid, slab, a);
+    return with_rate ? cell_pass<true, false>(grid, slab, a) : cell_pass<false, false>(grid, slab, a);
   }
   void edge_tensions(int slab) const {  // needs cells(slab) and cells(slab - 1), measure(slab + 1)
     for (int f = 0; f < kEdgeFamilies; ++f) {
