@@ -425,8 +425,11 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
   barrier();
   const LayerPasses passes{grid, a, with_rate};
+  // chunks of equal cell layers (the top point layer has none, so the last chunk's is light);
   // the earlier chunks take the odd layer: the later ones have their first layers' deferred work
-  const auto boundary = [&](int k) { return (grid.points.z() * k + chunks - 1) / chunks; };
+  const auto boundary = [&](int k) {
+    return k == chunks ? grid.points.z() : (grid.cell_slabs * k + chunks - 1) / chunks;
+  };
   const Range layers{boundary(chunk), boundary(chunk + 1)};
   const bool first_chunk = chunk == 0;
   int crushed = 0;
@@ -460,7 +463,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
 
 int grid_threads(const GridLayout& grid, int threads) {
   constexpr int kMinPointsPerThread = 4096;
-  return std::max(1, std::min({threads, grid.points.z(), grid.num_points / kMinPointsPerThread}));
+  return std::max(1, std::min({threads, grid.cell_slabs, grid.num_points / kMinPointsPerThread}));
 }
 
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,

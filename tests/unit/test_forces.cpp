@@ -265,15 +265,16 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
   }
 }
 
-// The grid passes cut the z-layers into one chunk per thread (at most one per 4096 points); a
-// chunk's first layers wait for the previous chunk. Any thread count gives the same bits, and the
-// lists' forces to rounding: a plate of 3 layers of points (12288 points: with 3 or 4 threads,
-// chunks of one layer each, whose deferred layers depend on each other), in the exact-bending
-// model, and a box of 15 layers (9375 points: 2 chunks), each with a crushed cell.
+// The grid passes cut the z-layers of cells into one chunk per thread (at most one per 4096
+// points and per layer of cells); a chunk's first layers wait for the previous chunk. Any thread
+// count gives the same bits, and the lists' forces to rounding: a plate of 3 layers of cells
+// (16384 points: with 3 or 4 threads, chunks of one layer each, whose deferred layers depend on
+// each other), in the exact-bending model, and a box of 14 layers (9375 points: 2 chunks), each
+// with a crushed cell.
 TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
-  LatticeDesc plate = box_lattice({63, 63, 2}, Eigen::Vector3d::Constant(0.01), damped);
+  LatticeDesc plate = box_lattice({63, 63, 3}, Eigen::Vector3d::Constant(0.01), damped);
   plate.model = CellModel::kExactBending;
   const std::vector<std::pair<const char*, LatticeDesc>> bodies{
       {"exact-bending plate", plate}, {"box", box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped)}};
