@@ -8,8 +8,8 @@
 //   2. cells: mean edge strains -> correction tension per axis (docs/model-baudet2007.md
 //      section 3); signed volume of the mean edge vectors -> crushed cells (section 5);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
-//   2b, 3b. the exact-bending twist, by faces (below), when the body has it: its cells' coefficients
-//      in pass 2 (from the corner positions the crushed test reads), its edge forces after pass 3;
+//   the exact-bending twist, by faces (below), when the body has it: its cells' coefficients in
+//      pass 2 (from the corner positions the crushed test reads), its edge forces in pass 3b;
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads share
 //      nothing and the sums do not depend on the thread count).
@@ -18,6 +18,7 @@
 #include "grid_forces.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -396,12 +397,15 @@ void copy_out(const GridLayout& grid, const Arrays& a, int slot, const Range& no
   }
 }
 
+// At most this many threads share the grid passes (their results live on the stack: a step
+// allocates nothing).
+constexpr int kMaxGridThreads = 64;
+
 // What the chunks share besides the arrays: their crushed cells, and their nodes' fastest
 // squared speed when they kick.
 struct ChunkResults {
-  std::vector<int> crushed;
-  std::vector<double> fastest_sq;
-  explicit ChunkResults(int chunks) : crushed(chunks, 0), fastest_sq(chunks, 0.0) {}
+  std::array<int, kMaxGridThreads> crushed{};
+  std::array<double, kMaxGridThreads> fastest_sq{};
   int total_crushed() const {
     int total = 0;
     for (int c : crushed) total += c;
@@ -463,7 +467,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
 
 int grid_threads(const GridLayout& grid, int threads) {
   constexpr int kMinPointsPerThread = 4096;
-  return std::max(1, std::min({threads, grid.cell_slabs, grid.num_points / kMinPointsPerThread}));
+  return std::max(1, std::min({threads, kMaxGridThreads, grid.cell_slabs, grid.num_points / kMinPointsPerThread}));
 }
 
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
@@ -472,7 +476,7 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   const int team = grid_threads(grid, threads);
-  ChunkResults results(team);
+  ChunkResults results;
   // one thread runs outside any parallel region: entering one, even for one thread, and its
   // barriers cost 9 us a step, as much as the passes of a 16x4x4 body
   if (team == 1) {

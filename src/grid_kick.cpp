@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #include "grid_kick.h"
 
+#include <cassert>
 #include <limits>
 
 #include "vector_clones.h"
@@ -60,6 +61,7 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
 
 double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
                        int begin, int end, Eigen::Matrix3Xd& forces) {
+  assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const bool nodal = kick.loads.nodal_forces.cols() == kick.model.num_nodes();
   double* out = forces.data();
   if (kick.mass_damping) {

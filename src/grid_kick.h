@@ -14,7 +14,8 @@
 namespace cubespring {
 
 /// What the kick needs besides the spring forces: the loads and mass damping at `state`, and the
-/// kick-drift from kick.from into kick.to.
+/// kick-drift from kick.from into kick.to, a State other than `state` and kick.from (the sweep
+/// reads the one while it writes the other).
 struct GridKick {
   const Model& model;
   const State& state;
@@ -27,7 +28,7 @@ struct GridKick {
 /// force gets its mass damping, gravity and nodal load, in the order and with the bits of the
 /// spring lists' finish (forces.cpp, NodeLoads), into `forces`; then v' = v0 + (kick / m) f and
 /// x' = x0 + drift v' into kick.to. Returns the largest squared speed [m^2/s^2], NaN if a speed
-/// is not finite.
+/// is not finite (the order-free max and count of an omp simd reduction).
 double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
                        int begin, int end, Eigen::Matrix3Xd& forces);
 

@@ -235,11 +235,10 @@ TEST(Integrator, GridAndSpringListsStepAlike) {
 // the step fuses the kick with the force pass (the grid's in one vectorised sweep per thread,
 // grid_kick.cpp) and must give the same bits.
 void expect_step_is_forces_then_kick(const Model& model, const Constraints& clamp, const Loads& loads,
-                                     const State& start, int threads, const std::string& what) {
+                                     const State& start, double dt, int threads, const std::string& what) {
   StepSettings settings;
   settings.threads = threads;
-  settings.time_step = 0.5 * max_stable_time_step(model);
-  const double dt = settings.time_step;
+  settings.time_step = dt;
   State stepped = start;
   Stepper stepper(model);
   ASSERT_TRUE(stepper.step(model, clamp, loads, settings, stepped).ok()) << what;
@@ -262,9 +261,8 @@ void expect_step_is_forces_then_kick(const Model& model, const Constraints& clam
   EXPECT_TRUE(stepped.positions == expected.positions) << what;
 }
 
-// The far top corner cell pushed through its bottom face: the kick then waits for its recovery.
-void crush_last_cell(const Model& model, State& state) {
-  const int c = model.num_cells() - 1;
+// Cell c's top face pushed through its bottom face: the kick then waits for its recovery.
+void crush_cell(const Model& model, int c, State& state) {
   for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[c][corner]) -= 0.015;
 }
 
@@ -288,8 +286,8 @@ TEST(Integrator, SymplecticStepIsTheForcesThenAKickAndDrift) {
             loads.nodal_forces = 1e-3 * Eigen::Matrix3Xd::Random(3, model->num_nodes());
           }
           State start = wobbling_block(*model);
-          if (crushed) crush_last_cell(*model, start);
-          expect_step_is_forces_then_kick(*model, clamp, loads, start, 1,
+          if (crushed) crush_cell(*model, model->num_cells() - 1, start);
+          expect_step_is_forces_then_kick(*model, clamp, loads, start, 0.5 * max_stable_time_step(*model), 1,
                                           std::string(model->grid_layout ? "grid" : "lists") + ", alpha " +
                                               std::to_string(mass_damping) + (with_loads ? ", loads" : "") +
                                               (crushed ? ", crushed" : ""));
@@ -297,18 +295,24 @@ TEST(Integrator, SymplecticStepIsTheForcesThenAKickAndDrift) {
       }
     }
   }
-  // a body whose grid passes take up to 3 threads, each kicking its share of the nodes; with the
-  // crushed cell in the last thread's layers, none may kick before its recovery
-  const Model large = test::box_model({24, 24, 14}, test::notes_material(0.3));
+  // a body whose grid passes take 1-3 threads (13125 points, 20 layers of cells), each kicking its
+  // share of the nodes; with a cell crushed in the first or the last thread's layers, none may
+  // kick before its recovery
+  Material damped = test::notes_material(0.3);
+  damped.mass_damping = 5.0;
+  const Model large = test::box_model({24, 24, 20}, damped);
   ASSERT_NE(large.grid_layout, nullptr);
-  Loads gravity;
-  gravity.gravity = {0, 0, -9.81};
-  for (const bool crushed : {false, true}) {
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  loads.nodal_forces = 1e-3 * Eigen::Matrix3Xd::Random(3, large.num_nodes());
+  const double dt = 0.5 * max_stable_time_step(large);
+  for (const int crushed_cell : {-1, 0, large.num_cells() - 1}) {
     State start = wobbling_block(large);
-    if (crushed) crush_last_cell(large, start);
+    if (crushed_cell >= 0) crush_cell(large, crushed_cell, start);
     for (const int threads : {1, 2, 3}) {
-      expect_step_is_forces_then_kick(large, Constraints(large), gravity, start, threads,
-                                      std::to_string(threads) + " threads" + (crushed ? ", crushed" : ""));
+      expect_step_is_forces_then_kick(large, Constraints(large), loads, start, dt, threads,
+                                      std::to_string(threads) + " threads, crushed cell " +
+                                          std::to_string(crushed_cell));
     }
   }
 }
