@@ -29,7 +29,7 @@ struct KickDrift {
 
 /// compute_forces() followed by the kick-drift, each node moved as soon as its force is complete
 /// (while it is still in cache). Returns the largest squared speed [m^2/s^2], NaN or infinity if
-/// a velocity is not finite. The states and forces are the same as from compute_forces() and a separate sweep.
+/// a velocity or a new position is not finite. The states and forces are the same as from compute_forces() and a separate sweep.
 double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads,
                                const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces,
                                const KickDrift& kick);

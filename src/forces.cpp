@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -458,7 +459,7 @@ double compute_forces_and_kick(const Model& model, const State& state, const Loa
         const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
         to.velocities.col(n) = v;
         to.positions.col(n) = from.positions.col(n) + kick.drift * v;
-        return v.squaredNorm();
+        return to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
       },
       &grid_kick);
 }

@@ -3,6 +3,7 @@
 #include "grid_kick.h"
 
 #include <cassert>
+#include <cmath>
 #include <limits>
 
 #include "vector_clones.h"
@@ -48,8 +49,10 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
       forces[i] = f;
       const double v = v0[i] + rate * f;
       v1[i] = v;
-      x1[i] = x0[i] + drift * v;
+      const double x = x0[i] + drift * v;
+      x1[i] = x;
       speed_sq += v * v;
+      not_finite += static_cast<int>(!(std::abs(x) <= std::numeric_limits<double>::max()));
     }
     not_finite += static_cast<int>(!(speed_sq <= std::numeric_limits<double>::max()));
     fastest_sq = fastest_sq > speed_sq ? fastest_sq : speed_sq;

@@ -72,7 +72,9 @@ class Stepper {
                            const StepSettings& settings, State& state);
   StepReport implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                            const StepSettings& settings, State& state);
-  StepReport check(const Model& model, const StepSettings& settings, double fastest, const State& candidate) const;
+  /// `fastest` [m/s] is NaN when a velocity, or (positions_checked) a position, is not finite.
+  StepReport check(const Model& model, const StepSettings& settings, double fastest, const State& candidate,
+                   bool positions_checked = false) const;
 
   ForceWorkspace workspace_;
   Eigen::Matrix3Xd forces_;

@@ -3,6 +3,8 @@
 // Time integration against analytic periods, conservation laws, stability limits and static
 // equilibria.
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -130,6 +132,36 @@ TEST(Integrator, StableTimeStepSeparatesStableFromUnstable) {
     for (int i = 0; i < 3000 && report.ok(); ++i) report = stepper.step(model, Constraints(model), Loads{}, settings, state);
     EXPECT_EQ(report.ok(), stable) << factor << " x " << limit << ": " << report.message;
     EXPECT_TRUE(state.positions.allFinite());
+  }
+}
+
+// A state that already holds a NaN or an infinity (a caller's bug) gives an unstable step and is
+// left as it was, on the grid passes and the spring lists, for each explicit integrator.
+TEST(Integrator, ANonFiniteStateIsReportedAndLeftAlone) {
+  const Model grid = test::box_model({6, 4, 3}, test::notes_material(0.3));
+  ASSERT_NE(grid.grid_layout, nullptr);
+  Model lists = grid;
+  lists.grid_layout.reset();
+  for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
+    for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet}) {
+      for (const bool in_velocity : {false, true}) {
+        State state = wobbling_block(*model);
+        (in_velocity ? state.velocities : state.positions)(1, 17) =
+            in_velocity ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
+        const State before = state;
+        StepSettings settings;
+        settings.integrator = integrator;
+        settings.time_step = 0.5 * max_stable_time_step(*model);
+        Stepper stepper(*model);
+        const StepReport report = stepper.step(*model, Constraints(*model), Loads{}, settings, state);
+        const std::string what = std::string(model->grid_layout ? "grid, " : "lists, ") +
+                                 integrator_name(integrator) + (in_velocity ? ", velocity" : ", position");
+        EXPECT_EQ(report.status, StepStatus::kUnstable) << what;
+        EXPECT_NE(report.message.find("NaN or infinite"), std::string::npos) << what << ": " << report.message;
+        EXPECT_EQ(std::memcmp(state.positions.data(), before.positions.data(), sizeof(double) * state.positions.size()), 0)
+            << what;  // bit by bit: NaN is not equal to itself
+      }
+    }
   }
 }
 
