@@ -72,7 +72,8 @@ class Stepper {
                            const StepSettings& settings, State& state);
   StepReport implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                            const StepSettings& settings, State& state);
-  /// `fastest` [m/s] is NaN when a velocity, or (positions_checked) a position, is not finite.
+  /// `fastest` [m/s] is NaN or infinite when a velocity, or (positions_checked) a position, is not
+  /// finite.
   StepReport check(const Model& model, const StepSettings& settings, double fastest, const State& candidate,
                    bool positions_checked = false) const;
 

@@ -135,31 +135,41 @@ TEST(Integrator, StableTimeStepSeparatesStableFromUnstable) {
   }
 }
 
-// A state that already holds a NaN or an infinity (a caller's bug) gives an unstable step and is
-// left as it was, on the grid passes and the spring lists, for each explicit integrator.
-TEST(Integrator, ANonFiniteStateIsReportedAndLeftAlone) {
+// A step whose result is not finite is reported and leaves the state as it was, on the grid
+// passes and the spring lists, for each explicit integrator: a state that already holds a NaN
+// (a caller's bug), and finite speeds that carry the nodes past the largest double in one step
+// (only the positions the kick makes are then not finite).
+TEST(Integrator, ANonFiniteStepIsReportedAndLeavesTheState) {
   const Model grid = test::box_model({6, 4, 3}, test::notes_material(0.3));
   ASSERT_NE(grid.grid_layout, nullptr);
   Model lists = grid;
   lists.grid_layout.reset();
   for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
     for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet}) {
-      for (const bool in_velocity : {false, true}) {
+      for (const bool overflow : {false, true}) {
         State state = wobbling_block(*model);
-        (in_velocity ? state.velocities : state.positions)(1, 17) =
-            in_velocity ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
-        const State before = state;
         StepSettings settings;
         settings.integrator = integrator;
         settings.time_step = 0.5 * max_stable_time_step(*model);
+        if (overflow) {  // at rest (no force), 1e152 m/s for 1e158 s: x = 1e310 m, speed^2 = 1e304
+          state = rest_state(*model);
+          state.velocities.row(0).setConstant(1e152);
+          settings.time_step = 1e158;
+          settings.speed_limit = 1e200;
+        } else {
+          state.positions(1, 17) = std::numeric_limits<double>::quiet_NaN();
+        }
+        const State before = state;
         Stepper stepper(*model);
         const StepReport report = stepper.step(*model, Constraints(*model), Loads{}, settings, state);
         const std::string what = std::string(model->grid_layout ? "grid, " : "lists, ") +
-                                 integrator_name(integrator) + (in_velocity ? ", velocity" : ", position");
+                                 integrator_name(integrator) + (overflow ? ", overflow" : ", NaN");
         EXPECT_EQ(report.status, StepStatus::kUnstable) << what;
         EXPECT_NE(report.message.find("NaN or infinite"), std::string::npos) << what << ": " << report.message;
-        EXPECT_EQ(std::memcmp(state.positions.data(), before.positions.data(), sizeof(double) * state.positions.size()), 0)
-            << what;  // bit by bit: NaN is not equal to itself
+        const auto bytes = sizeof(double) * static_cast<std::size_t>(state.positions.size());
+        EXPECT_EQ(std::memcmp(state.positions.data(), before.positions.data(), bytes), 0) << what;
+        EXPECT_EQ(std::memcmp(state.velocities.data(), before.velocities.data(), bytes), 0) << what;
+        EXPECT_EQ(state.time, before.time) << what;
       }
     }
   }
