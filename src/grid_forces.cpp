@@ -376,10 +376,13 @@ struct LayerPasses {
   void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1
 };
 
-// Part `chunk` of `chunks` of [0, count), about equal.
-Range chunk_range(int count, int chunk, int chunks) {
-  return {static_cast<int>(static_cast<std::int64_t>(count) * chunk / chunks),
-          static_cast<int>(static_cast<std::int64_t>(count) * (chunk + 1) / chunks)};
+// The nodes whose points lie in the z-layers `layers`: a range, as point_of_node increases.
+Range nodes_in_layers(const GridLayout& grid, const Range& layers) {
+  const auto first_node_at = [&](int slab) {
+    const auto& points = grid.point_of_node;
+    return static_cast<int>(std::lower_bound(points.begin(), points.end(), slab * grid.stride_z) - points.begin());
+  };
+  return {first_node_at(layers.begin), first_node_at(layers.end)};
 }
 
 // Values of the nodes in `nodes` (of 3 x num_nodes) into the grid arrays slot .. slot + 2.
@@ -419,22 +422,23 @@ struct ChunkResults {
 // chunk's last) for its edge tensions: they wait for the barrier after the layer loop. Its first
 // two layers' gathers need those tensions, and those of the layer before, which is the previous
 // chunk's first when that chunk has one layer: they wait for the barrier after the deferred
-// tensions. Then each chunk finishes a share of the nodes: the kick when asked and no cell of the
-// body is crushed (their recovery comes first, on the caller's side), else the forces alone.
+// tensions. Then each chunk finishes the nodes of its layers, whose forces are complete once its
+// own gathers are, without waiting for the others: the kick when asked and no cell of the body
+// is crushed (their recovery comes first, on the caller's side), else the forces alone.
 template <typename Barrier>
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Arrays& a,
                int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
-  const Range nodes = chunk_range(static_cast<int>(grid.point_of_node.size()), chunk, chunks);
-  copy_in(grid, state.positions, a, kPosition, nodes);
-  if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
-  barrier();
-  const LayerPasses passes{grid, a, with_rate};
   // chunks of equal cell layers (the top point layer has none, so the last chunk's is light);
   // the earlier chunks take the odd layer: the later ones have their first layers' deferred work
   const auto boundary = [&](int k) {
     return k == chunks ? grid.points.z() : (grid.cell_slabs * k + chunks - 1) / chunks;
   };
   const Range layers{boundary(chunk), boundary(chunk + 1)};
+  const Range nodes = nodes_in_layers(grid, layers);
+  copy_in(grid, state.positions, a, kPosition, nodes);
+  if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
+  barrier();
+  const LayerPasses passes{grid, a, with_rate};
   const bool first_chunk = chunk == 0;
   int crushed = 0;
   passes.measure(layers.begin);
@@ -453,7 +457,6 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
     passes.gather(layers.begin);
     if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
   }
-  barrier();
   if (kick != nullptr && results.total_crushed() == 0) {
     const double* force[3] = {a[kForce], a[kForce + 1], a[kForce + 2]};
     results.fastest_sq[chunk] =

@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: MIT
 #include "grid_layout.h"
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "cell_geometry.h"
@@ -59,6 +61,8 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
   }
   grid.point_of_node.resize(model.num_nodes());
   for (int n = 0; n < model.num_nodes(); ++n) grid.point_of_node[n] = grid.point(model.node_grid_index[n]);
+  // nodes come z-major, x fastest (model.cpp): a thread's layers hold a contiguous range of them
+  if (!std::is_sorted(grid.point_of_node.begin(), grid.point_of_node.end())) return nullptr;
 
   const int step_of_axis[3] = {1, grid.stride_y, grid.stride_z};
   for (int f = 0; f < kSpringFamilies; ++f) {

@@ -39,7 +39,7 @@ struct GridLayout {
   /// Every scratch array has this many points on each side beyond the grid, so that a spring or a
   /// cell at any point may read its neighbours without bounds checks.
   int padding = 0;
-  std::vector<int> point_of_node;       ///< model node -> grid point
+  std::vector<int> point_of_node;       ///< model node -> grid point, increasing
   Eigen::Matrix3Xd rest_points;         ///< rest position of every point [m]
   std::array<SpringFamily, kSpringFamilies> families;
 
