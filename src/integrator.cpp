@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/IterativeLinearSolvers>
@@ -16,7 +17,9 @@ namespace cubespring {
 namespace {
 
 // Driven nodes reach their target at the end of the step with the velocity that gets them there.
-void drive_nodes(const Constraints& constraints, double dt, const State& start, State& end) {
+// Returns false if one of those velocities is not finite (a far target in a tiny step).
+bool drive_nodes(const Constraints& constraints, double dt, const State& start, State& end) {
+  bool finite = true;
   const std::uint8_t* driven = constraints.driven_flags();
   const int num_nodes = constraints.num_nodes();
   constexpr int kWord = sizeof(std::uint64_t);
@@ -31,8 +34,10 @@ void drive_nodes(const Constraints& constraints, double dt, const State& start, 
       if (driven[n] == 0) continue;
       end.positions.col(n) = constraints.target(n);
       end.velocities.col(n) = (constraints.target(n) - start.positions.col(n)) / dt;
+      finite = finite && end.velocities.col(n).allFinite();
     }
   }
+  return finite;
 }
 
 
@@ -129,11 +134,11 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
     // taken at the half-step velocity)
     (void)compute_forces_and_kick(model, state, loads, options, workspace_, forces_,
                                   KickDrift{0.5 * dt, dt, &state, &candidate_});
-    drive_nodes(constraints, dt, state, candidate_);
+    (void)drive_nodes(constraints, dt, state, candidate_);  // checked by the second drive
     compute_forces(model, candidate_, loads, options, workspace_, forces_);
     fastest_sq = kick_drift(model, forces_, 0.5 * dt, 0.0, candidate_, candidate_);
   }
-  drive_nodes(constraints, dt, state, candidate_);
+  if (!drive_nodes(constraints, dt, state, candidate_)) fastest_sq = std::numeric_limits<double>::quiet_NaN();
   candidate_.time = state.time + dt;
   // the symplectic kick checked the positions it made (driven nodes' targets are finite); a
   // serial sweep here would also pull every position into this thread's cache
@@ -222,7 +227,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   candidate_ = state;
   candidate_.velocities = Eigen::Map<const Eigen::Matrix3Xd>(velocity.data(), 3, num_nodes);
   candidate_.positions += dt * candidate_.velocities;
-  drive_nodes(constraints, dt, state, candidate_);
+  (void)drive_nodes(constraints, dt, state, candidate_);  // the check below sees every velocity
   candidate_.time = state.time + dt;
   StepReport checked = check(model, settings, std::sqrt(candidate_.velocities.colwise().squaredNorm().maxCoeff()), candidate_);
   if (!checked.ok()) return checked;

@@ -175,6 +175,25 @@ TEST(Integrator, ANonFiniteStepIsReportedAndLeavesTheState) {
   }
 }
 
+// A driven node sent 1e10 m in 1e-300 s would move at an infinite speed: each integrator reports
+// the step as unstable and leaves the state as it was.
+TEST(Integrator, ADrivenNodeWithAnInfiniteSpeedIsReported) {
+  const Model model = test::box_model({6, 4, 3}, test::notes_material(0.3));
+  Constraints tool(model);
+  ASSERT_TRUE(tool.prescribe_displacement(model, 5, {1e10, 0, 0}).ok());
+  for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet, Integrator::kImplicitEuler}) {
+    State state = rest_state(model);
+    const State before = state;
+    StepSettings settings;
+    settings.integrator = integrator;
+    settings.time_step = 1e-300;
+    Stepper stepper(model);
+    const StepReport report = stepper.step(model, tool, Loads{}, settings, state);
+    EXPECT_FALSE(report.ok()) << integrator_name(integrator);
+    EXPECT_TRUE(state == before) << integrator_name(integrator);
+  }
+}
+
 TEST(Integrator, ImplicitEulerIsStableWhereExplicitBlowsUp) {
   // E = 1 MPa, 1 cm cells, dt = 10 ms: far above the explicit limit (about 3e-4 s)
   Material m;
