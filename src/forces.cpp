@@ -22,14 +22,11 @@
 #include <cmath>
 #include <limits>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "cell_geometry.h"
 #include "force_blocks.h"
 #include "force_passes.h"
 #include "grid_forces.h"
+#include "thread_shares.h"
 #include "twist.h"
 
 namespace cubespring {
@@ -321,22 +318,10 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
   const int blocks = num_force_blocks(model);
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const int threads = std::max(1, std::min(options.threads, blocks));
-  if (threads == 1) {  // no parallel region: entering one costs microseconds (grid_forces.cpp)
-    run_block_passes<kWithTwist>(model, state, with_rate, 0, blocks, true, [] {}, ws, forces, finish);
-  } else {
-#pragma omp parallel num_threads(threads)
-    {
-      int share = 0, shares = 1;
-#ifdef _OPENMP
-      share = omp_get_thread_num();
-      shares = omp_get_num_threads();
-#endif
-      run_block_passes<kWithTwist>(model, state, with_rate, blocks * share / shares, blocks * (share + 1) / shares,
-                                   share == 0, [] {
-#pragma omp barrier
-                                   }, ws, forces, finish);
-    }
-  }
+  run_shares(threads, [&](int share, int shares, const auto& barrier) {
+    run_block_passes<kWithTwist>(model, state, with_rate, blocks * share / shares, blocks * (share + 1) / shares,
+                                 share == 0, barrier, ws, forces, finish);
+  });
   double fastest_sq = 0.0;
   for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);
   return fastest_sq;
@@ -392,12 +377,9 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
     }
     ws.block_fastest[b] = fastest_sq;
   };
-  if (threads == 1) {  // no parallel region: entering one costs microseconds (grid_forces.cpp)
-    for (int b = 0; b < blocks; ++b) finish_block(b);
-  } else {
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (int b = 0; b < blocks; ++b) finish_block(b);
-  }
+  run_shares(threads, [&](int share, int shares, const auto&) {
+    for (int b = blocks * share / shares; b < blocks * (share + 1) / shares; ++b) finish_block(b);
+  });
   double fastest_sq = 0.0;
   for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);
   return fastest_sq;

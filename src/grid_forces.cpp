@@ -24,11 +24,8 @@
 
 #include "cubespring/forces.h"
 #include "force_passes.h"
+#include "thread_shares.h"
 #include "vector_clones.h"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace cubespring {
 namespace {
@@ -480,23 +477,9 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   const int team = grid_threads(grid, threads);
   ChunkResults results;
-  // one thread runs outside any parallel region: entering one, even for one thread, and its
-  // barriers cost 9 us a step, as much as the passes of a 16x4x4 body
-  if (team == 1) {
-    run_chunk(grid, state, with_rate, kick, a, 0, 1, [] {}, results, forces);
-  } else {
-#pragma omp parallel num_threads(team)
-    {
-      int chunk = 0, chunks = 1;
-#ifdef _OPENMP
-      chunk = omp_get_thread_num();
-      chunks = omp_get_num_threads();
-#endif
-      run_chunk(grid, state, with_rate, kick, a, chunk, chunks, [] {
-#pragma omp barrier
-      }, results, forces);
-    }
-  }
+  run_shares(team, [&](int chunk, int chunks, const auto& barrier) {
+    run_chunk(grid, state, with_rate, kick, a, chunk, chunks, barrier, results, forces);
+  });
   GridForces out;
   out.crushed = results.total_crushed();
   out.kicked = kick != nullptr && out.crushed == 0;
