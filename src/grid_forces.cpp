@@ -13,12 +13,14 @@
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads share
 //      nothing and the sums do not depend on the thread count).
-// The passes run z-layer by z-layer, each as soon as its inputs are there, so that the arrays of
-// a few layers are all the cache holds (all layers at once spill out of L2 from 32x8x8 on).
+// The passes run z-layer by z-layer, each as soon as its inputs are there, and keep their
+// temporaries for the 3 layers they read at once only (a ring per thread), so that the
+// temporaries stay in cache and only the state, forces and model stream through it.
 #include "grid_forces.h"
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 
@@ -30,14 +32,21 @@
 namespace cubespring {
 namespace {
 
-// Scratch arrays, each padded by grid.padding points on both sides.
-enum Slot : int {
-  kPosition = 0,                       // x, y, z
-  kVelocity = 3,                       // x, y, z
-  kForce = 6,                          // x, y, z
-  kCellTension = 9,                    // x, y, z
+// Arrays of every point of the grid, each padded by grid.padding points on both sides: the state
+// the passes read and the forces they make.
+enum GridSlot : int {
+  kPosition = 0,  // x, y, z
+  kVelocity = 3,  // x, y, z
+  kForce = 6,     // x, y, z
+  kGridSlots = 9
+};
+// The passes' temporaries, kept for kRingLayers z-layers only, per thread: a ring that holds
+// layer L in place L % kRingLayers, so that they stay in cache (the whole grid's temporaries
+// spill out of L2 from 32x8x8 cells on, and out of L3 from 32x32x32).
+enum LayerSlot : int {
+  kCellTension = kGridSlots,  // x, y, z
   // per family x, y, z: the spring's force on its first end (edges: the unit vector until pass 3)
-  kFamilyForce = 12,
+  kFamilyForce = kCellTension + 3,
   kEdgeLength = kFamilyForce + 3 * kSpringFamilies,
   kEdgeRate = kEdgeLength + kEdgeFamilies,
   kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
@@ -45,68 +54,126 @@ enum Slot : int {
   kCellTwist = kEdgeVector + 3 * kEdgeFamilies,   // Q per face normal x, y, z (twist only)
   kSlots = kCellTwist + 3
 };
+constexpr int kLayerSlots = kSlots - kGridSlots;
+// The passes of layer L read the temporaries of layers L - 1 to L + 1 (run_chunk).
+constexpr int kRingLayers = 3;
 
-class Arrays {
+// A layer's values of one slot, index i for point layer * stride_z + i. The grid's slots run on
+// through the other layers; a ring's hold their layer, and zeros a row and a point beyond it on
+// both sides (the in-layer reach of a spring or a cell); layers below the grid read as zeros.
+class LayerArrays {
  public:
-  Arrays(const GridLayout& grid, std::vector<double>& scratch)
-      : stride_(static_cast<std::size_t>(grid.num_points + 2 * grid.padding)), padding_(grid.padding) {
-    const std::size_t size = stride_ * kSlots;
+  LayerArrays(const GridLayout& grid, double* grid_arrays, const double* zeros, double* ring)
+      : grid_(grid), grid_arrays_(grid_arrays), zeros_(zeros), ring_(ring) {}
+
+  /// `slot` at the points g + step of layer `layer` (step in cells along x, y, z).
+  const double* in(int slot, int layer, const Eigen::Vector3i& step = Eigen::Vector3i::Zero()) const {
+    const int in_layer = step.x() + grid_.stride_y * step.y();
+    layer += step.z();
+    if (slot >= kGridSlots && layer < 0) return zeros_ + layer_padding(grid_) + in_layer;
+    return place(slot, layer) + in_layer;
+  }
+  double* out(int slot, int layer) const {
+    assert(layer >= 0);
+    return place(slot, layer);
+  }
+
+  static int layer_padding(const GridLayout& grid) { return grid.stride_y + 1; }
+  static std::size_t layer_stride(const GridLayout& grid) {
+    return static_cast<std::size_t>(grid.stride_z + 2 * layer_padding(grid));
+  }
+  static std::size_t grid_stride(const GridLayout& grid) {
+    return static_cast<std::size_t>(grid.num_points + 2 * grid.padding);
+  }
+
+ private:
+  double* place(int slot, int layer) const {
+    assert(layer < grid_.points.z());
+    if (slot < kGridSlots) {
+      return grid_arrays_ + grid_stride(grid_) * slot + grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
+    }
+    const std::size_t array = static_cast<std::size_t>(layer % kRingLayers) * kLayerSlots + (slot - kGridSlots);
+    return ring_ + layer_stride(grid_) * array + layer_padding(grid_);
+  }
+
+  const GridLayout& grid_;
+  double* grid_arrays_;
+  const double* zeros_;
+  double* ring_;
+};
+
+// The scratch vector: the grid's slots, a layer of zeros, then a ring per thread.
+class Scratch {
+ public:
+  Scratch(const GridLayout& grid, int rings, std::vector<double>& scratch) : grid_(grid) {
+    const std::size_t size = LayerArrays::grid_stride(grid) * kGridSlots +
+                             LayerArrays::layer_stride(grid) * (1 + static_cast<std::size_t>(rings) * kRingLayers * kLayerSlots);
     if (scratch.size() != size) {
-      scratch.assign(size, 0.0);  // the padding and the points outside the body stay as set here
+      scratch.assign(size, 0.0);  // the paddings and the points outside the body stay as set here
       base_ = scratch.data();
       for (int axis = 0; axis < 3; ++axis) {
-        double* position = (*this)[kPosition + axis];
+        double* position = arrays(0).out(kPosition + axis, 0);
         for (int p = 0; p < grid.num_points; ++p) position[p] = grid.rest_points(axis, p);
       }
     }
     base_ = scratch.data();
   }
-  double* operator[](int slot) const { return base_ + stride_ * static_cast<std::size_t>(slot) + padding_; }
+  /// The arrays of the thread that uses ring `ring`.
+  LayerArrays arrays(int ring) const {
+    double* zeros = base_ + LayerArrays::grid_stride(grid_) * kGridSlots;
+    const std::size_t ring_size = LayerArrays::layer_stride(grid_) * kRingLayers * kLayerSlots;
+    double* first_ring = zeros + LayerArrays::layer_stride(grid_);
+    return LayerArrays(grid_, base_, zeros, first_ring + ring_size * static_cast<std::size_t>(ring));
+  }
 
  private:
-  std::size_t stride_;
-  int padding_;
+  const GridLayout& grid_;
   double* base_ = nullptr;
 };
 
-// The points of z-layer `slab` whose first `rows` y-rows a loop covers.
-struct Range {
-  int begin, end;
-};
-inline Range layer_range(const GridLayout& grid, int slab, int rows) {
-  const int begin = slab * grid.stride_z;
-  return {begin, begin + rows * grid.stride_y};
+// Zeros in the arrays `slots` .. `slots + count - 1` of a layer that a pass does not compute
+// (the ring holds an older layer's values there).
+void zero_layer(const GridLayout& grid, const LayerArrays& a, int slot, int count, int layer) {
+  for (int s = slot; s < slot + count; ++s) std::fill_n(a.out(s, layer), grid.stride_z, 0.0);
 }
+
+// The points of a z-layer that a loop over its first `rows` y-rows covers (whole rows).
+inline int layer_points(const GridLayout& grid, int rows) { return rows * grid.stride_y; }
+// A per-point array of the layout (no padding) from the first point of layer `slab`.
+inline const double* from_layer(const std::vector<double>& values, const GridLayout& grid, int slab) {
+  return values.data() + static_cast<std::size_t>(slab) * grid.stride_z;
+}
+inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
 
 // Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist).
 template <bool kWithRate, bool kDiagonal, bool kKeepVector>
-CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const Arrays& a) {
+CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
-  const Range range = layer_range(grid, slab, family.rows);
-  const double* __restrict x = a[kPosition];
-  const double* __restrict y = a[kPosition + 1];
-  const double* __restrict z = a[kPosition + 2];
-  const double* __restrict vx = a[kVelocity];
-  const double* __restrict vy = a[kVelocity + 1];
-  const double* __restrict vz = a[kVelocity + 2];
-  double* __restrict fx = a[kFamilyForce + 3 * f];
-  double* __restrict fy = a[kFamilyForce + 3 * f + 1];
-  double* __restrict fz = a[kFamilyForce + 3 * f + 2];
+  const int count = layer_points(grid, family.rows);
+  const double* __restrict x = a.in(kPosition, slab);
+  const double* __restrict y = a.in(kPosition + 1, slab);
+  const double* __restrict z = a.in(kPosition + 2, slab);
+  const double* __restrict vx = a.in(kVelocity, slab);
+  const double* __restrict vy = a.in(kVelocity + 1, slab);
+  const double* __restrict vz = a.in(kVelocity + 2, slab);
+  double* __restrict fx = a.out(kFamilyForce + 3 * f, slab);
+  double* __restrict fy = a.out(kFamilyForce + 3 * f + 1, slab);
+  double* __restrict fz = a.out(kFamilyForce + 3 * f + 2, slab);
   // edges keep their length, rate and own tension for the cells
   const int e = kDiagonal ? 0 : f;
-  double* __restrict length_out = a[kEdgeLength + e];
-  double* __restrict rate_out = a[kEdgeRate + e];
-  double* __restrict own_out = a[kEdgeOwnTension + e];
-  double* __restrict vector_x = a[kEdgeVector + 3 * e];
-  double* __restrict vector_y = a[kEdgeVector + 3 * e + 1];
-  double* __restrict vector_z = a[kEdgeVector + 3 * e + 2];
-  const double* __restrict stiffness = family.stiffness.data();
-  const double* __restrict damping = kWithRate ? family.damping.data() : nullptr;
+  double* __restrict length_out = a.out(kEdgeLength + e, slab);
+  double* __restrict rate_out = a.out(kEdgeRate + e, slab);
+  double* __restrict own_out = a.out(kEdgeOwnTension + e, slab);
+  double* __restrict vector_x = a.out(kEdgeVector + 3 * e, slab);
+  double* __restrict vector_y = a.out(kEdgeVector + 3 * e + 1, slab);
+  double* __restrict vector_z = a.out(kEdgeVector + 3 * e + 2, slab);
+  const double* __restrict stiffness = from_layer(family.stiffness, grid, slab);
+  const double* __restrict damping = kWithRate ? from_layer(family.damping, grid, slab) : nullptr;
   const double rest = family.rest_length;
   const double degenerate = kDegenerateLengthFraction * rest;
   const int from = family.from, to = family.to;
 #pragma omp simd
-  for (int g = range.begin; g < range.end; ++g) {
+  for (int g = 0; g < count; ++g) {
     const double ex = x[g + to] - x[g + from];
     const double ey = y[g + to] - y[g + from];
     const double ez = z[g + to] - z[g + from];
@@ -140,9 +207,14 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
 }
 
 template <bool kWithRate>
-void measure_springs(const GridLayout& grid, int f, int slab, const Arrays& a) {
-  if (slab >= grid.families[f].slabs) return;
-  if (f >= kEdgeFamilies) {
+void measure_springs(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
+  if (slab >= grid.families[f].slabs) {  // the top layer has no z-edges or cells: no springs there
+    zero_layer(grid, a, kFamilyForce + 3 * f, 3, slab);
+    if (f < kEdgeFamilies) {
+      for (const int slot : {kEdgeLength + f, kEdgeRate + f, kEdgeOwnTension + f}) zero_layer(grid, a, slot, 1, slab);
+      zero_layer(grid, a, kEdgeVector + 3 * f, 3, slab);
+    }
+  } else if (f >= kEdgeFamilies) {
     measure_family<kWithRate, true, false>(grid, f, slab, a);
   } else if (grid.has_twist) {
     measure_family<kWithRate, false, true>(grid, f, slab, a);
@@ -151,10 +223,20 @@ void measure_springs(const GridLayout& grid, int f, int slab, const Arrays& a) {
   }
 }
 
-// Sum over the 4 a-edges of the cell at g of values v of the edge family a: the a-edges start
-// at corners 0, (1 << b), (1 << c), both (b, c the other axes), in that order (as in forces.cpp).
-inline double edge_sum(const double* v, int g, int step_b, int step_c) {
-  return (v[g] + v[g + step_b]) + (v[g + step_c] + v[g + step_b + step_c]);
+// The 4 edges along `axis` of the cells of a layer start at the cell's corner 0 and at steps b,
+// c, b + c (b < c the other axes): their sum, in that order (as in forces.cpp).
+struct CellEdges {
+  const double *at_0, *at_b, *at_c, *at_bc;
+  CellEdges(const LayerArrays& a, int slot, int slab, int axis) {
+    const Eigen::Vector3i b = unit(axis == 0 ? 1 : 0), c = unit(axis == 2 ? 1 : 2);
+    at_0 = a.in(slot, slab);
+    at_b = a.in(slot, slab, b);
+    at_c = a.in(slot, slab, c);
+    at_bc = a.in(slot, slab, b + c);
+  }
+};
+inline double edge_sum(const CellEdges& edges, int g) {
+  return (edges.at_0[g] + edges.at_b[g]) + (edges.at_c[g] + edges.at_bc[g]);
 }
 
 // The twist of the exact-bending model (docs/model-exact-bending.md section 3; the same terms as
@@ -174,57 +256,53 @@ inline double twist_coefficient(double lower_4, double upper_4, double stiffness
 // Pass 2 on one z-layer of cells; returns its crushed cells. With kTwist, also the cells' twist
 // coefficients (above), from the corner positions the crushed test reads anyway.
 template <bool kWithRate, bool kTwist>
-CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const Arrays& a) {
-  const Range range = layer_range(grid, slab, grid.cell_rows);
+CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
+  const int count = layer_points(grid, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
   const Eigen::Array3d tension_per_stress = grid.cell_size.prod() * inverse_edge_sum;
   const double ix = inverse_edge_sum.x(), iy = inverse_edge_sum.y(), iz = inverse_edge_sum.z();
   const double tx = tension_per_stress.x(), ty = tension_per_stress.y(), tz = tension_per_stress.z();
   const double crushed_volume_64 = 64.0 * kCrushedVolumeFraction * grid.cell_size.prod();
   const int sy = grid.stride_y, sz = grid.stride_z;
-  const double* __restrict lx = a[kEdgeLength];
-  const double* __restrict ly = a[kEdgeLength + 1];
-  const double* __restrict lz = a[kEdgeLength + 2];
-  const double* __restrict rx = a[kEdgeRate];
-  const double* __restrict ry = a[kEdgeRate + 1];
-  const double* __restrict rz = a[kEdgeRate + 2];
-  const double* __restrict dxx = grid.correction[0].data();
-  const double* __restrict dyy = grid.correction[1].data();
-  const double* __restrict dzz = grid.correction[2].data();
-  const double* __restrict dxy = grid.correction[3].data();
-  const double* __restrict dxz = grid.correction[4].data();
-  const double* __restrict dyz = grid.correction[5].data();
-  const double* __restrict beta = kWithRate ? grid.cell_beta.data() : nullptr;
-  const double* __restrict occupied = grid.cell_occupied.data();
-  double* __restrict tension_x = a[kCellTension];
-  double* __restrict tension_y = a[kCellTension + 1];
-  double* __restrict tension_z = a[kCellTension + 2];
+  const CellEdges lx(a, kEdgeLength, slab, 0), ly(a, kEdgeLength + 1, slab, 1), lz(a, kEdgeLength + 2, slab, 2);
+  const CellEdges rx(a, kEdgeRate, slab, 0), ry(a, kEdgeRate + 1, slab, 1), rz(a, kEdgeRate + 2, slab, 2);
+  const double* __restrict dxx = from_layer(grid.correction[0], grid, slab);
+  const double* __restrict dyy = from_layer(grid.correction[1], grid, slab);
+  const double* __restrict dzz = from_layer(grid.correction[2], grid, slab);
+  const double* __restrict dxy = from_layer(grid.correction[3], grid, slab);
+  const double* __restrict dxz = from_layer(grid.correction[4], grid, slab);
+  const double* __restrict dyz = from_layer(grid.correction[5], grid, slab);
+  const double* __restrict beta = kWithRate ? from_layer(grid.cell_beta, grid, slab) : nullptr;
+  const double* __restrict occupied = from_layer(grid.cell_occupied, grid, slab);
+  double* __restrict tension_x = a.out(kCellTension, slab);
+  double* __restrict tension_y = a.out(kCellTension + 1, slab);
+  double* __restrict tension_z = a.out(kCellTension + 2, slab);
   // the corners' positions, corner c at g + step(c) (model.h)
-  const double* position[3] = {a[kPosition], a[kPosition + 1], a[kPosition + 2]};
+  const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
   const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};
   int crushed = 0;
 #pragma omp simd
-  for (int g = range.begin; g < range.end; ++g) {
-    double ex = edge_sum(lx, g, sy, sz) * ix - 1.0;
-    double ey = edge_sum(ly, g, 1, sz) * iy - 1.0;
-    double ez = edge_sum(lz, g, 1, sy) * iz - 1.0;
+  for (int g = 0; g < count; ++g) {
+    double ex = edge_sum(lx, g) * ix - 1.0;
+    double ey = edge_sum(ly, g) * iy - 1.0;
+    double ez = edge_sum(lz, g) * iz - 1.0;
     if constexpr (kWithRate) {
-      ex += beta[g] * (edge_sum(rx, g, sy, sz) * ix);
-      ey += beta[g] * (edge_sum(ry, g, 1, sz) * iy);
-      ez += beta[g] * (edge_sum(rz, g, 1, sy) * iz);
+      ex += beta[g] * (edge_sum(rx, g) * ix);
+      ey += beta[g] * (edge_sum(ry, g) * iy);
+      ez += beta[g] * (edge_sum(rz, g) * iz);
     }
     tension_x[g] = tx * (dxx[g] * ex + dxy[g] * ey + dxz[g] * ez);
     tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
     tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
   }
   // a loop of its own: together, the two need more vector registers than there are
-  const double* __restrict twist_stiffness = kTwist ? grid.cell_twist.data() : nullptr;
-  double* __restrict qx = a[kCellTwist];
-  double* __restrict qy = a[kCellTwist + 1];
-  double* __restrict qz = a[kCellTwist + 2];
+  const double* __restrict twist_stiffness = kTwist ? from_layer(grid.cell_twist, grid, slab) : nullptr;
+  double* __restrict qx = a.out(kCellTwist, slab);
+  double* __restrict qy = a.out(kCellTwist + 1, slab);
+  double* __restrict qz = a.out(kCellTwist + 2, slab);
   const double h = grid.cell_size.x();
 #pragma omp simd reduction(+ : crushed)
-  for (int g = range.begin; g < range.end; ++g) {
+  for (int g = 0; g < count; ++g) {
     // 4 x each mean edge vector: the sum of the cell's 4 edges along that axis
     double mean[3][3];  // [edge axis][component]
     // 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y, z,
@@ -262,21 +340,23 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const A
 }
 
 // Pass 3 for edge family f on one z-layer: the edge at g belongs to the cells at g, g - b, g - c,
-// g - b - c (b, c the steps of the other two axes).
-CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, int slab, const Arrays& a) {
+// g - b - c (b, c the other two axes).
+CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   if (slab >= family.slabs) return;
-  const Range range = layer_range(grid, slab, family.rows);
-  const int steps[3] = {1, grid.stride_y, grid.stride_z};
-  const int b = steps[(f + 1) % 3], c = steps[(f + 2) % 3];
-  const double* __restrict tension = a[kCellTension + f];
-  const double* __restrict own = a[kEdgeOwnTension + f];
-  double* __restrict fx = a[kFamilyForce + 3 * f];  // the unit vector, made the force
-  double* __restrict fy = a[kFamilyForce + 3 * f + 1];
-  double* __restrict fz = a[kFamilyForce + 3 * f + 2];
+  const int count = layer_points(grid, family.rows);
+  const Eigen::Vector3i b = unit((f + 1) % 3), c = unit((f + 2) % 3);
+  const double* __restrict at_0 = a.in(kCellTension + f, slab);
+  const double* __restrict at_b = a.in(kCellTension + f, slab, -b);
+  const double* __restrict at_c = a.in(kCellTension + f, slab, -c);
+  const double* __restrict at_bc = a.in(kCellTension + f, slab, -b - c);
+  const double* __restrict own = a.in(kEdgeOwnTension + f, slab);
+  double* __restrict fx = a.out(kFamilyForce + 3 * f, slab);  // the unit vector, made the force
+  double* __restrict fy = a.out(kFamilyForce + 3 * f + 1, slab);
+  double* __restrict fz = a.out(kFamilyForce + 3 * f + 2, slab);
 #pragma omp simd
-  for (int g = range.begin; g < range.end; ++g) {
-    const double total = own[g] + ((tension[g] + tension[g - b]) + (tension[g - c] + tension[g - b - c]));
+  for (int g = 0; g < count; ++g) {
+    const double total = own[g] + ((at_0[g] + at_b[g]) + (at_c[g] + at_bc[g]));
     fx[g] *= total;
     fy[g] *= total;
     fz[g] *= total;
@@ -285,72 +365,90 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
 
 // Pass 3b, twist only: the twist forces of the edges of family f on one z-layer, added to their
 // forces. The edge along e at g lies on the faces normal to each other axis d at F = g and
-// F = g - step o (o the third axis); the face's mean of its o-edges starts at F and F + step e.
-CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int slab, const Arrays& a) {
+// F = g - o (o the third axis); the face's mean of its o-edges starts at F and F + e.
+CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   if (slab >= family.slabs) return;
-  const Range range = layer_range(grid, slab, family.rows);
-  const int steps[3] = {1, grid.stride_y, grid.stride_z};
-  const int se = steps[f];
-  // the two faces' normals d and third axes o: (f + 1, f + 2) and (f + 2, f + 1)
+  const int count = layer_points(grid, family.rows);
+  const Eigen::Vector3i e = unit(f);
+  // the two faces' normals d and third axes o: (d1, d2) and (d2, d1)
   const int d1 = (f + 1) % 3, d2 = (f + 2) % 3;
-  const int s1 = steps[d1], s2 = steps[d2];
-  const double* __restrict q1 = a[kCellTwist + d1];
-  const double* __restrict q2 = a[kCellTwist + d2];
-  const double* __restrict m1x = a[kEdgeVector + 3 * d2];  // o = d2 for the faces normal to d1
-  const double* __restrict m1y = a[kEdgeVector + 3 * d2 + 1];
-  const double* __restrict m1z = a[kEdgeVector + 3 * d2 + 2];
-  const double* __restrict m2x = a[kEdgeVector + 3 * d1];
-  const double* __restrict m2y = a[kEdgeVector + 3 * d1 + 1];
-  const double* __restrict m2z = a[kEdgeVector + 3 * d1 + 2];
-  double* __restrict fx = a[kFamilyForce + 3 * f];
-  double* __restrict fy = a[kFamilyForce + 3 * f + 1];
-  double* __restrict fz = a[kFamilyForce + 3 * f + 2];
+  const Eigen::Vector3i s1 = unit(d1), s2 = unit(d2);
+  const auto q = [&](int d, const Eigen::Vector3i& step) { return a.in(kCellTwist + d, slab, step); };
+  const double* __restrict q1_0 = q(d1, Eigen::Vector3i::Zero());
+  const double* __restrict q1_1 = q(d1, -s1);
+  const double* __restrict q1_2 = q(d1, -s2);
+  const double* __restrict q1_12 = q(d1, -s1 - s2);
+  const double* __restrict q2_0 = q(d2, Eigen::Vector3i::Zero());
+  const double* __restrict q2_1 = q(d2, -s1);
+  const double* __restrict q2_2 = q(d2, -s2);
+  const double* __restrict q2_12 = q(d2, -s1 - s2);
+  // the faces' o-edge vectors, component by component: o = d2 for the faces normal to d1
+  const double* m1[3][4];  // [component][at g, g + e, g - s2, g - s2 + e]
+  const double* m2[3][4];  // [component][at g, g + e, g - s1, g - s1 + e]
+  for (int k = 0; k < 3; ++k) {
+    const int slot1 = kEdgeVector + 3 * d2 + k, slot2 = kEdgeVector + 3 * d1 + k;
+    const Eigen::Vector3i steps1[4] = {Eigen::Vector3i::Zero(), e, -s2, e - s2};
+    const Eigen::Vector3i steps2[4] = {Eigen::Vector3i::Zero(), e, -s1, e - s1};
+    for (int j = 0; j < 4; ++j) {
+      m1[k][j] = a.in(slot1, slab, steps1[j]);
+      m2[k][j] = a.in(slot2, slab, steps2[j]);
+    }
+  }
+  double* __restrict force[3] = {a.out(kFamilyForce + 3 * f, slab), a.out(kFamilyForce + 3 * f + 1, slab),
+                                 a.out(kFamilyForce + 3 * f + 2, slab)};
+  for (int k = 0; k < 3; ++k) {  // a loop per component: all three at once need too many registers
+    const double* __restrict m1_0 = m1[k][0];
+    const double* __restrict m1_e = m1[k][1];
+    const double* __restrict m1_2 = m1[k][2];
+    const double* __restrict m1_2e = m1[k][3];
+    const double* __restrict m2_0 = m2[k][0];
+    const double* __restrict m2_e = m2[k][1];
+    const double* __restrict m2_1 = m2[k][2];
+    const double* __restrict m2_1e = m2[k][3];
+    double* __restrict out = force[k];
 #pragma omp simd
-  for (int g = range.begin; g < range.end; ++g) {
-    // normal d1: faces at g and g - s2; normal d2: faces at g and g - s1
-    const double near1 = 0.5 * (q1[g - s1] - q1[g]), far1 = 0.5 * (q1[g - s2 - s1] - q1[g - s2]);
-    const double near2 = 0.5 * (q2[g - s2] - q2[g]), far2 = 0.5 * (q2[g - s1 - s2] - q2[g - s1]);
-    const int f1 = g - s2, f2 = g - s1;
-    fx[g] += (near1 * (m1x[g] + m1x[g + se]) + far1 * (m1x[f1] + m1x[f1 + se])) +
-             (near2 * (m2x[g] + m2x[g + se]) + far2 * (m2x[f2] + m2x[f2 + se]));
-    fy[g] += (near1 * (m1y[g] + m1y[g + se]) + far1 * (m1y[f1] + m1y[f1 + se])) +
-             (near2 * (m2y[g] + m2y[g + se]) + far2 * (m2y[f2] + m2y[f2 + se]));
-    fz[g] += (near1 * (m1z[g] + m1z[g + se]) + far1 * (m1z[f1] + m1z[f1 + se])) +
-             (near2 * (m2z[g] + m2z[g + se]) + far2 * (m2z[f2] + m2z[f2 + se]));
+    for (int g = 0; g < count; ++g) {
+      // normal d1: faces at g and g - s2; normal d2: faces at g and g - s1
+      const double near1 = 0.5 * (q1_1[g] - q1_0[g]), far1 = 0.5 * (q1_12[g] - q1_2[g]);
+      const double near2 = 0.5 * (q2_2[g] - q2_0[g]), far2 = 0.5 * (q2_12[g] - q2_1[g]);
+      out[g] += (near1 * (m1_0[g] + m1_e[g]) + far1 * (m1_2[g] + m1_2e[g])) +
+                (near2 * (m2_0[g] + m2_e[g]) + far2 * (m2_1[g] + m2_1e[g]));
+    }
   }
 }
 
 // Pass 4 on one z-layer of points: each family's springs that start at g (at g - from) pull
 // g towards their other end; those that end at g (at g - to) pull it back.
-CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, const Arrays& a) {
-  const Range range = layer_range(grid, slab, grid.points.y());
-  int from[kSpringFamilies], to[kSpringFamilies];
-  for (int f = 0; f < kSpringFamilies; ++f) {
-    from[f] = grid.families[f].from;
-    to[f] = grid.families[f].to;
-  }
+CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
+  const int count = layer_points(grid, grid.points.y());
   for (int axis = 0; axis < 3; ++axis) {
-    const double* spring_force[kSpringFamilies];
-    for (int f = 0; f < kSpringFamilies; ++f) spring_force[f] = a[kFamilyForce + 3 * f + axis];
-    double* __restrict force = a[kForce + axis];
+    const double* starting[kSpringFamilies];
+    const double* ending[kSpringFamilies];
+    for (int f = 0; f < kSpringFamilies; ++f) {
+      starting[f] = a.in(kFamilyForce + 3 * f + axis, slab, -grid.families[f].from_corner);
+      ending[f] = a.in(kFamilyForce + 3 * f + axis, slab, -grid.families[f].to_corner);
+    }
+    double* __restrict force = a.out(kForce + axis, slab);
 #pragma omp simd
-    for (int g = range.begin; g < range.end; ++g) {
+    for (int g = 0; g < count; ++g) {
       double sum = 0.0;
 #pragma GCC unroll 7
-      for (int f = 0; f < kSpringFamilies; ++f) sum += spring_force[f][g - from[f]] - spring_force[f][g - to[f]];
+      for (int f = 0; f < kSpringFamilies; ++f) sum += starting[f][g] - ending[f][g];
       force[g] = sum;
     }
   }
 }
 
-// The passes of one z-layer each, in the order a layer's inputs become ready.
+// The passes of one z-layer each, in the order a layer's inputs become ready. Layers outside
+// the grid have nothing to do.
 struct LayerPasses {
   const GridLayout& grid;
-  const Arrays& a;
+  const LayerArrays& a;
   bool with_rate;
 
-  void measure(int slab) const {
+  void measure(int slab) const {  // needs the positions of slab and slab + 1
+    if (slab < 0 || slab >= grid.points.z()) return;
     for (int f = 0; f < kSpringFamilies; ++f) {
       if (with_rate) {
         measure_springs<true>(grid, f, slab, a);
@@ -360,17 +458,27 @@ struct LayerPasses {
     }
   }
   int cells(int slab) const {  // needs measure(slab) and measure(slab + 1)
-    if (slab >= grid.cell_slabs) return 0;
+    if (slab < 0) return 0;
+    if (slab >= grid.cell_slabs) {  // the top layer of points
+      zero_layer(grid, a, kCellTension, 3, slab);
+      zero_layer(grid, a, kCellTwist, 3, slab);
+      return 0;
+    }
     if (grid.has_twist) return with_rate ? cell_pass<true, true>(grid, slab, a) : cell_pass<false, true>(grid, slab, a);
     return with_rate ? cell_pass<true, false>(grid, slab, a) : cell_pass<false, false>(grid, slab, a);
   }
   void edge_tensions(int slab) const {  // needs cells(slab) and cells(slab - 1), measure(slab + 1)
+    if (slab < 0) return;
     for (int f = 0; f < kEdgeFamilies; ++f) {
       edge_tension_pass(grid, f, slab, a);
       if (grid.has_twist) twist_edge_pass(grid, f, slab, a);
     }
   }
   void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1
+};
+
+struct Range {
+  int begin, end;
 };
 
 // The nodes whose points lie in the z-layers `layers`: a range, as point_of_node increases.
@@ -383,17 +491,19 @@ Range nodes_in_layers(const GridLayout& grid, const Range& layers) {
 }
 
 // Values of the nodes in `nodes` (of 3 x num_nodes) into the grid arrays slot .. slot + 2.
-void copy_in(const GridLayout& grid, const Eigen::Matrix3Xd& values, const Arrays& a, int slot, const Range& nodes) {
+void copy_in(const GridLayout& grid, const Eigen::Matrix3Xd& values, const LayerArrays& a, int slot, const Range& nodes) {
+  double* grid_values[3] = {a.out(slot, 0), a.out(slot + 1, 0), a.out(slot + 2, 0)};
   for (int n = nodes.begin; n < nodes.end; ++n) {
     const int g = grid.point_of_node[n];
-    for (int axis = 0; axis < 3; ++axis) a[slot + axis][g] = values(axis, n);
+    for (int axis = 0; axis < 3; ++axis) grid_values[axis][g] = values(axis, n);
   }
 }
 
-void copy_out(const GridLayout& grid, const Arrays& a, int slot, const Range& nodes, Eigen::Matrix3Xd& values) {
+void copy_out(const GridLayout& grid, const LayerArrays& a, int slot, const Range& nodes, Eigen::Matrix3Xd& values) {
+  const double* grid_values[3] = {a.in(slot, 0), a.in(slot + 1, 0), a.in(slot + 2, 0)};
   for (int n = nodes.begin; n < nodes.end; ++n) {
     const int g = grid.point_of_node[n];
-    for (int axis = 0; axis < 3; ++axis) values(axis, n) = a[slot + axis][g];
+    for (int axis = 0; axis < 3; ++axis) values(axis, n) = grid_values[axis][g];
   }
 }
 
@@ -414,48 +524,46 @@ struct ChunkResults {
 };
 
 // Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
-// share of the z-layers and runs the passes layer after layer, so that a layer is still in
-// cache when the next pass reads it. A chunk's first layer needs the layer before it (another
-// chunk's last) for its edge tensions: they wait for the barrier after the layer loop. Its first
-// two layers' gathers need those tensions, and those of the layer before, which is the previous
-// chunk's first when that chunk has one layer: they wait for the barrier after the deferred
-// tensions. Then each chunk finishes the nodes of its layers, whose forces are complete once its
-// own gathers are, without waiting for the others: the kick when asked and no cell of the body
-// is crushed (their recovery comes first, on the caller's side), else the forces alone.
+// share of the z-layers and runs the passes layer after layer in its own ring of temporaries.
+// Its first gather needs the spring forces of the layer below, another chunk's: the chunk
+// recomputes them (2 layers of springs and cells, 1 of edge tensions) rather than wait for that
+// chunk, so that chunks share only the positions, which every chunk copies in before any reads
+// them. Then each chunk finishes the nodes of its layers, whose forces are complete once its own
+// gathers are: the kick when asked and no cell of the body is crushed (their recovery comes
+// first, on the caller's side), else the forces alone.
 template <typename Barrier>
-void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Arrays& a,
+void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Scratch& scratch,
                int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
   // chunks of equal cell layers (the top point layer has none, so the last chunk's is light);
-  // the earlier chunks take the odd layer: the later ones have their first layers' deferred work
+  // the earlier chunks take the odd layer: the later ones recompute their first layers' input
   const auto boundary = [&](int k) {
     return k == chunks ? grid.points.z() : (grid.cell_slabs * k + chunks - 1) / chunks;
   };
   const Range layers{boundary(chunk), boundary(chunk + 1)};
   const Range nodes = nodes_in_layers(grid, layers);
+  const LayerArrays a = scratch.arrays(chunk);
   copy_in(grid, state.positions, a, kPosition, nodes);
   if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
   barrier();
   const LayerPasses passes{grid, a, with_rate};
-  const bool first_chunk = chunk == 0;
+  const int first = layers.begin;
+  passes.measure(first - 2);  // the layer below's spring forces (none below the grid)
+  passes.measure(first - 1);
+  passes.cells(first - 2);
+  passes.measure(first);
+  passes.cells(first - 1);
+  passes.edge_tensions(first - 1);
   int crushed = 0;
-  passes.measure(layers.begin);
-  barrier();
-  for (int slab = layers.begin; slab < layers.end; ++slab) {
-    if (slab + 1 < layers.end) passes.measure(slab + 1);
+  for (int slab = first; slab < layers.end; ++slab) {
+    passes.measure(slab + 1);
     crushed += passes.cells(slab);
-    if (first_chunk || slab > layers.begin) passes.edge_tensions(slab);
-    if (first_chunk || slab > layers.begin + 1) passes.gather(slab);
+    passes.edge_tensions(slab);
+    passes.gather(slab);
   }
   results.crushed[chunk] = crushed;
   barrier();
-  if (!first_chunk) passes.edge_tensions(layers.begin);
-  barrier();
-  if (!first_chunk) {
-    passes.gather(layers.begin);
-    if (layers.begin + 1 < layers.end) passes.gather(layers.begin + 1);
-  }
   if (kick != nullptr && results.total_crushed() == 0) {
-    const double* force[3] = {a[kForce], a[kForce + 1], a[kForce + 2]};
+    const double* force[3] = {a.in(kForce, 0), a.in(kForce + 1, 0), a.in(kForce + 2, 0)};
     results.fastest_sq[chunk] =
         kick_grid_nodes(*kick, grid.point_of_node.data(), force, nodes.begin, nodes.end, forces);
   } else {
@@ -472,13 +580,13 @@ int grid_threads(const GridLayout& grid, int threads) {
 
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                               std::vector<double>& scratch, Eigen::Matrix3Xd& forces, const GridKick* kick) {
-  const Arrays a(grid, scratch);
+  const int team = grid_threads(grid, threads);
+  const Scratch arrays(grid, team, scratch);
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
-  const int team = grid_threads(grid, threads);
   ChunkResults results;
   run_shares(team, [&](int chunk, int chunks, const auto& barrier) {
-    run_chunk(grid, state, with_rate, kick, a, chunk, chunks, barrier, results, forces);
+    run_chunk(grid, state, with_rate, kick, arrays, chunk, chunks, barrier, results, forces);
   });
   GridForces out;
   out.crushed = results.total_crushed();

@@ -69,6 +69,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
     SpringFamily& family = grid.families[f];
     if (f < kEdgeFamilies) {
       family.to = step_of_axis[f];
+      family.to_corner = Eigen::Vector3i::Unit(f);
       family.rest_length = model.cell_size[f];
       family.rows = f == 1 ? cells.y() : grid.points.y();
       family.slabs = f == 2 ? cells.z() : grid.points.z();
@@ -77,6 +78,8 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
       const Eigen::Vector3i from = corner_offset(k), to = corner_offset(7 - k);
       family.from = from.x() + grid.stride_y * from.y() + grid.stride_z * from.z();
       family.to = to.x() + grid.stride_y * to.y() + grid.stride_z * to.z();
+      family.from_corner = from;
+      family.to_corner = to;
       family.rest_length = model.cell_size.norm();
       family.rows = cells.y();
       family.slabs = cells.z();

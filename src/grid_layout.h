@@ -22,6 +22,7 @@ namespace cubespring {
 /// from corner k to corner 7 - k of the cell whose corner 0 is g.
 struct SpringFamily {
   int from = 0, to = 0;
+  Eigen::Vector3i from_corner{0, 0, 0}, to_corner{0, 0, 0};  ///< the same steps, in cells along x, y, z
   int rows = 0, slabs = 0;
   double rest_length = 0;           ///< the same for every spring of the family [m]
   std::vector<double> stiffness;    ///< per point [N/m]; 0 where the body has no such spring
