@@ -73,6 +73,7 @@ class LayerArrays {
     if (slot >= kGridSlots && layer < 0) return zeros_ + layer_padding(grid_) + in_layer;
     return place(slot, layer) + in_layer;
   }
+  /// Only layers of the grid are written (the passes return for the layers beyond it).
   double* out(int slot, int layer) const {
     assert(layer >= 0);
     return place(slot, layer);
@@ -88,7 +89,7 @@ class LayerArrays {
 
  private:
   double* place(int slot, int layer) const {
-    assert(layer < grid_.points.z());
+    assert(layer >= 0 && layer < grid_.points.z());
     if (slot < kGridSlots) {
       return grid_arrays_ + grid_stride(grid_) * slot + grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
     }
@@ -145,8 +146,10 @@ inline const double* from_layer(const std::vector<double>& values, const GridLay
 }
 inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
 
-// Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist).
-template <bool kWithRate, bool kDiagonal, bool kKeepVector>
+// Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist);
+// kPerCell: a diagonal family whose stiffness is the same in every cell (SpringFamily::per_cell),
+// taken times the cell's occupancy (the same bits) to spare a stream of per-point values.
+template <bool kWithRate, bool kDiagonal, bool kKeepVector, bool kPerCell = false>
 CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   const int count = layer_points(grid, family.rows);
@@ -168,7 +171,9 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
   double* __restrict vector_y = a.out(kEdgeVector + 3 * e + 1, slab);
   double* __restrict vector_z = a.out(kEdgeVector + 3 * e + 2, slab);
   const double* __restrict stiffness = from_layer(family.stiffness, grid, slab);
-  const double* __restrict damping = kWithRate ? from_layer(family.damping, grid, slab) : nullptr;
+  const double* __restrict damping = kWithRate && !kPerCell ? from_layer(family.damping, grid, slab) : nullptr;
+  const double* __restrict occupied = from_layer(grid.cell_occupied, grid, slab);
+  const double cell_stiffness = family.cell_stiffness, cell_damping = family.cell_damping;
   const double rest = family.rest_length;
   const double degenerate = kDegenerateLengthFraction * rest;
   const int from = family.from, to = family.to;
@@ -179,11 +184,11 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
     const double ez = z[g + to] - z[g + from];
     const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
     const double inverse = length > degenerate ? 1.0 / length : 0.0;
-    double own = stiffness[g] * (length - rest);
+    double own = (kPerCell ? occupied[g] * cell_stiffness : stiffness[g]) * (length - rest);
     if constexpr (kWithRate) {
       const double rate = ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey +
                            (vz[g + to] - vz[g + from]) * ez) * inverse;
-      own += damping[g] * rate;
+      own += (kPerCell ? occupied[g] * cell_damping : damping[g]) * rate;
       if constexpr (!kDiagonal) rate_out[g] = rate;
     }
     if constexpr (kDiagonal) {
@@ -214,6 +219,8 @@ void measure_springs(const GridLayout& grid, int f, int slab, const LayerArrays&
       for (const int slot : {kEdgeLength + f, kEdgeRate + f, kEdgeOwnTension + f}) zero_layer(grid, a, slot, 1, slab);
       zero_layer(grid, a, kEdgeVector + 3 * f, 3, slab);
     }
+  } else if (f >= kEdgeFamilies && grid.families[f].per_cell) {
+    measure_family<kWithRate, true, false, true>(grid, f, slab, a);
   } else if (f >= kEdgeFamilies) {
     measure_family<kWithRate, true, false>(grid, f, slab, a);
   } else if (grid.has_twist) {
@@ -254,8 +261,10 @@ inline double twist_coefficient(double lower_4, double upper_4, double stiffness
 }
 
 // Pass 2 on one z-layer of cells; returns its crushed cells. With kTwist, also the cells' twist
-// coefficients (above), from the corner positions the crushed test reads anyway.
-template <bool kWithRate, bool kTwist>
+// coefficients (above), from the corner positions the crushed test reads anyway. kUniform: every
+// cell has the grid's uniform coefficients (times its occupancy: 1 or 0, the same bits), which
+// spares the loop 6-8 streams of per-cell values (its loads from memory were most of its time).
+template <bool kWithRate, bool kTwist, bool kUniform>
 CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
@@ -272,7 +281,10 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
   const double* __restrict dxy = from_layer(grid.correction[3], grid, slab);
   const double* __restrict dxz = from_layer(grid.correction[4], grid, slab);
   const double* __restrict dyz = from_layer(grid.correction[5], grid, slab);
-  const double* __restrict beta = kWithRate ? from_layer(grid.cell_beta, grid, slab) : nullptr;
+  const double* __restrict beta = kWithRate && !kUniform ? from_layer(grid.cell_beta, grid, slab) : nullptr;
+  const double uxx = grid.uniform_correction[0], uyy = grid.uniform_correction[1], uzz = grid.uniform_correction[2];
+  const double uxy = grid.uniform_correction[3], uxz = grid.uniform_correction[4], uyz = grid.uniform_correction[5];
+  const double uniform_beta = grid.uniform_beta;
   const double* __restrict occupied = from_layer(grid.cell_occupied, grid, slab);
   double* __restrict tension_x = a.out(kCellTension, slab);
   double* __restrict tension_y = a.out(kCellTension + 1, slab);
@@ -287,16 +299,25 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
     double ey = edge_sum(ly, g) * iy - 1.0;
     double ez = edge_sum(lz, g) * iz - 1.0;
     if constexpr (kWithRate) {
-      ex += beta[g] * (edge_sum(rx, g) * ix);
-      ey += beta[g] * (edge_sum(ry, g) * iy);
-      ez += beta[g] * (edge_sum(rz, g) * iz);
+      const double b = kUniform ? uniform_beta : beta[g];
+      ex += b * (edge_sum(rx, g) * ix);
+      ey += b * (edge_sum(ry, g) * iy);
+      ez += b * (edge_sum(rz, g) * iz);
     }
-    tension_x[g] = tx * (dxx[g] * ex + dxy[g] * ey + dxz[g] * ez);
-    tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
-    tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
+    if constexpr (kUniform) {
+      const double o = occupied[g];
+      tension_x[g] = o * (tx * (uxx * ex + uxy * ey + uxz * ez));
+      tension_y[g] = o * (ty * (uxy * ex + uyy * ey + uyz * ez));
+      tension_z[g] = o * (tz * (uxz * ex + uyz * ey + uzz * ez));
+    } else {
+      tension_x[g] = tx * (dxx[g] * ex + dxy[g] * ey + dxz[g] * ez);
+      tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
+      tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
+    }
   }
   // a loop of its own: together, the two need more vector registers than there are
-  const double* __restrict twist_stiffness = kTwist ? from_layer(grid.cell_twist, grid, slab) : nullptr;
+  const double* __restrict twist_stiffness = kTwist && !kUniform ? from_layer(grid.cell_twist, grid, slab) : nullptr;
+  const double uniform_twist = grid.uniform_twist;
   double* __restrict qx = a.out(kCellTwist, slab);
   double* __restrict qy = a.out(kCellTwist + 1, slab);
   double* __restrict qz = a.out(kCellTwist + 2, slab);
@@ -331,9 +352,10 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
     const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
     crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
     if constexpr (kTwist) {
-      qx[g] = twist_coefficient(x_lower, x_upper, twist_stiffness[g], h);
-      qy[g] = twist_coefficient(y_lower, y_upper, twist_stiffness[g], h);
-      qz[g] = twist_coefficient(z_lower, z_upper, twist_stiffness[g], h);
+      const double stiffness = kUniform ? occupied[g] * uniform_twist : twist_stiffness[g];
+      qx[g] = twist_coefficient(x_lower, x_upper, stiffness, h);
+      qy[g] = twist_coefficient(y_lower, y_upper, stiffness, h);
+      qz[g] = twist_coefficient(z_lower, z_upper, stiffness, h);
     }
   }
   return crushed;
@@ -464,10 +486,18 @@ struct LayerPasses {
       zero_layer(grid, a, kCellTwist, 3, slab);
       return 0;
     }
-    if (grid.has_twist) return with_rate ? cell_pass<true, true>(grid, slab, a) : cell_pass<false, true>(grid, slab, a);
-    return with_rate ? cell_pass<true, false>(grid, slab, a) : cell_pass<false, false>(grid, slab, a);
+    if (grid.uniform_cells) return cell_pass_of_kind<true>(slab);
+    return cell_pass_of_kind<false>(slab);
   }
-  void edge_tensions(int slab) const {  // needs cells(slab) and cells(slab - 1), measure(slab + 1)
+  template <bool kUniform>
+  int cell_pass_of_kind(int slab) const {
+    if (grid.has_twist) {
+      return with_rate ? cell_pass<true, true, kUniform>(grid, slab, a) : cell_pass<false, true, kUniform>(grid, slab, a);
+    }
+    return with_rate ? cell_pass<true, false, kUniform>(grid, slab, a) : cell_pass<false, false, kUniform>(grid, slab, a);
+  }
+  // needs cells(slab) and cells(slab - 1); the twist also measure(slab - 1) and measure(slab + 1)
+  void edge_tensions(int slab) const {
     if (slab < 0) return;
     for (int f = 0; f < kEdgeFamilies; ++f) {
       edge_tension_pass(grid, f, slab, a);
@@ -527,8 +557,8 @@ struct ChunkResults {
 // share of the z-layers and runs the passes layer after layer in its own ring of temporaries.
 // Its first gather needs the spring forces of the layer below, another chunk's: the chunk
 // recomputes them (2 layers of springs and cells, 1 of edge tensions) rather than wait for that
-// chunk, so that chunks share only the positions, which every chunk copies in before any reads
-// them. Then each chunk finishes the nodes of its layers, whose forces are complete once its own
+// chunk, so that chunks share only the positions and velocities, which every chunk copies in
+// before any reads them, and their counts of crushed cells. Then each chunk finishes the nodes of its layers, whose forces are complete once its own
 // gathers are: the kick when asked and no cell of the body is crushed (their recovery comes
 // first, on the caller's side), else the forces alone.
 template <typename Barrier>
@@ -547,7 +577,9 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   barrier();
   const LayerPasses passes{grid, a, with_rate};
   const int first = layers.begin;
-  passes.measure(first - 2);  // the layer below's spring forces (none below the grid)
+  // the spring forces of the layer below (nothing below the grid): its edge tensions need the
+  // cells of the 2 layers below, and the twist the edge vectors of the layer below those
+  passes.measure(first - 2);
   passes.measure(first - 1);
   passes.cells(first - 2);
   passes.measure(first);

@@ -22,6 +22,35 @@ int family_of_step(const Eigen::Vector3i& step) {
   return -1;
 }
 
+// The cells' coefficients as constants when every cell has the same (to the bit).
+void set_uniform_cells(const Model& model, GridLayout& grid) {
+  const int first = grid.point(model.cell_grid_index[0]);
+  const auto same_in_every_cell = [&](const std::vector<double>& values) {
+    return values.empty() || std::all_of(model.cell_grid_index.begin(), model.cell_grid_index.end(),
+                                         [&](const Eigen::Vector3i& cell) { return values[grid.point(cell)] == values[first]; });
+  };
+  grid.uniform_cells = std::all_of(grid.correction.begin(), grid.correction.end(), same_in_every_cell) &&
+                       same_in_every_cell(grid.cell_twist) && same_in_every_cell(grid.cell_beta);
+  if (!grid.uniform_cells) return;
+  for (int i = 0; i < 6; ++i) grid.uniform_correction[i] = grid.correction[i][first];
+  if (!grid.cell_twist.empty()) grid.uniform_twist = grid.cell_twist[first];
+  if (!grid.cell_beta.empty()) grid.uniform_beta = grid.cell_beta[first];
+}
+
+// Whether every diagonal of family f has the stiffness and damping of the first occupied cell's.
+void set_per_cell_diagonals(GridLayout& grid, int f) {
+  SpringFamily& family = grid.families[f];
+  const auto& occupied = grid.cell_occupied;
+  const auto first = std::find(occupied.begin(), occupied.end(), 1.0) - occupied.begin();
+  family.cell_stiffness = family.stiffness[first];
+  family.cell_damping = family.damping.empty() ? 0.0 : family.damping[first];
+  family.per_cell = true;
+  for (std::size_t p = 0; p < occupied.size() && family.per_cell; ++p) {
+    family.per_cell = family.stiffness[p] == occupied[p] * family.cell_stiffness &&
+                      (family.damping.empty() || family.damping[p] == occupied[p] * family.cell_damping);
+  }
+}
+
 }  // namespace
 
 std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
@@ -120,6 +149,8 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
       grid.cell_beta[point] = model.materials[model.cell_material[c]].stiffness_damping;
     }
   }
+  set_uniform_cells(model, grid);
+  for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) set_per_cell_diagonals(grid, f);
   return layout;
 }
 

@@ -27,6 +27,10 @@ struct SpringFamily {
   double rest_length = 0;           ///< the same for every spring of the family [m]
   std::vector<double> stiffness;    ///< per point [N/m]; 0 where the body has no such spring
   std::vector<double> damping;      ///< beta times stiffness [N s/m]; empty without stiffness damping
+  /// A diagonal family of a body of one material: stiffness and damping are these times
+  /// cell_occupied at every point, and the passes read the cells' occupancy instead.
+  bool per_cell = false;
+  double cell_stiffness = 0.0, cell_damping = 0.0;
 };
 inline constexpr int kEdgeFamilies = 3;
 inline constexpr int kSpringFamilies = 7;
@@ -37,8 +41,9 @@ struct GridLayout {
   Eigen::Vector3d cell_size{0, 0, 0};   ///< [m]
   int stride_y = 0, stride_z = 0;       ///< point index steps along y and z
   int num_points = 0;
-  /// Every scratch array has this many points on each side beyond the grid, so that a spring or a
-  /// cell at any point may read its neighbours without bounds checks.
+  /// The arrays of every point (state and forces, grid_forces.cpp) have this many points on each
+  /// side beyond the grid, so that a spring or a cell at any point may read its neighbours
+  /// without bounds checks.
   int padding = 0;
   std::vector<int> point_of_node;       ///< model node -> grid point, increasing
   Eigen::Matrix3Xd rest_points;         ///< rest position of every point [m]
@@ -51,6 +56,12 @@ struct GridLayout {
   std::vector<double> cell_twist;       ///< zeta G [Pa] (exact-bending model); empty without twist
   bool has_twist = false;
   int cell_rows = 0, cell_slabs = 0;    ///< cells per x-row are whole rows too
+  /// Every cell has the same correction, twist stiffness and beta (a body of one material): the
+  /// cell pass takes these times cell_occupied and leaves the per-cell arrays above in memory.
+  bool uniform_cells = false;
+  std::array<double, 6> uniform_correction{};  ///< [Pa]
+  double uniform_twist = 0.0;                  ///< [Pa]
+  double uniform_beta = 0.0;                   ///< [s]
 
   int point(const Eigen::Vector3i& index) const {
     const Eigen::Vector3i local = index - first_node;

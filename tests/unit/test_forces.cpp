@@ -3,6 +3,7 @@
 // Forces: equilibrium at rest, energy gradient, invariance, balance, the correction's size and sign.
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -265,6 +266,52 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
   }
 }
 
+// A body of one material takes its cells' coefficients and diagonals' stiffness as constants
+// on the grid (grid_layout.h: uniform_cells, SpringFamily::per_cell), but only while every cell
+// has them: after one diagonal's stiffness and damping and one cell's correction and twist are
+// changed (and update_grid_layout), the grid passes still give the lists' forces, which the
+// changes move by far more than the rounding.
+TEST(Forces, GridPassesTakeAChangedDiagonalAndCell) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+    LatticeDesc desc = box_lattice({5, 4, 3}, Eigen::Vector3d::Constant(0.01), damped);
+    desc.model = cell_model;
+    Result<Model> built = build_model(desc);
+    ASSERT_TRUE(built.ok()) << built.message();
+    const Model& before = built.value();
+    for (const bool change_cell : {false, true}) {
+      Model changed = before;
+      if (change_cell) {
+        changed.cell_correction[middle_cell(changed)] *= 1.5;
+        if (changed.has_twist) changed.cell_twist_stiffness[middle_cell(changed)] *= 1.5;
+      } else {
+        int diagonal = 0;
+        while ((changed.node_grid_index[changed.spring_nodes[diagonal][1]] -
+                changed.node_grid_index[changed.spring_nodes[diagonal][0]]).cwiseAbs().minCoeff() == 0) {
+          ++diagonal;
+        }
+        changed.spring_stiffness[diagonal] *= 3.0;
+        changed.spring_damping[diagonal] *= 3.0;
+      }
+      update_grid_layout(changed);
+      ASSERT_NE(changed.grid_layout, nullptr);
+      Model lists = changed;
+      lists.grid_layout.reset();
+      const State state = disturbed_state(changed, false);
+      ForceWorkspace ws;
+      Eigen::Matrix3Xd by_grid, by_lists, unchanged;
+      compute_forces(changed, state, Loads{}, ForceOptions{true, 1}, ws, by_grid);
+      compute_forces(lists, state, Loads{}, ForceOptions{true, 1}, ws, by_lists);
+      compute_forces(before, state, Loads{}, ForceOptions{true, 1}, ws, unchanged);
+      const double scale = by_lists.cwiseAbs().maxCoeff();
+      const std::string what = std::string(cell_model_name(cell_model)) + (change_cell ? ", cell" : ", diagonal");
+      ASSERT_GT((by_lists - unchanged).cwiseAbs().maxCoeff(), 1e-6 * scale) << what;
+      EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale) << what;
+    }
+  }
+}
+
 // The grid passes cut the z-layers of cells into one chunk per thread (at most one per 4096
 // points and per layer of cells); a chunk recomputes the spring forces of the layer below its
 // first in its own ring of layers. Any thread count gives the same bits, and the lists' forces
@@ -303,9 +350,9 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
 // A workspace used by one body and then another whose grid arrays have the same size, but
 // another shape, starts afresh: the second body's forces are those of a workspace of its own.
 TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
-  // 2 x 3 x 4 points padded by 6 + 2 + 1 on each side, and 4 x 2 x 2 padded by 8 + 4 + 1: 42 each
-  const Model first = test::box_model({1, 2, 3}, notes_material(0.3));
-  const Model second = test::box_model({3, 1, 1}, notes_material(0.45));
+  // 2 x 4 x 2 points and 3 x 2 x 3: the same size of grid arrays and rings (grid_forces.cpp)
+  const Model first = test::box_model({1, 3, 1}, notes_material(0.3));
+  const Model second = test::box_model({2, 1, 2}, notes_material(0.45));
   State first_state = rest_state(first);
   first_state.positions = test::perturbed(first, 1e-3);
   State second_state = rest_state(second);
@@ -313,8 +360,9 @@ TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
   ForceWorkspace shared, own;
   Eigen::Matrix3Xd forces, expected;
   compute_forces(first, first_state, Loads{}, ForceOptions{}, shared, forces);
-  compute_forces(second, second_state, Loads{}, ForceOptions{}, shared, forces);
   compute_forces(second, second_state, Loads{}, ForceOptions{}, own, expected);
+  ASSERT_EQ(shared.grid_arrays.size(), own.grid_arrays.size()) << "the bodies no longer test a workspace of the same size";
+  compute_forces(second, second_state, Loads{}, ForceOptions{}, shared, forces);
   EXPECT_EQ(std::memcmp(forces.data(), expected.data(), sizeof(double) * forces.size()), 0);
 }
 
