@@ -260,12 +260,12 @@ inline double twist_coefficient(double lower_4, double upper_4, double stiffness
   return 0.5 * stiffness * h * ((upper - lower) / (h * h));
 }
 
-// Pass 2 on one z-layer of cells; returns its crushed cells. With kTwist, also the cells' twist
+// Pass 2 on one z-layer of cells; returns its crushed cells (0 unless count_crushed). With kTwist, also the cells' twist
 // coefficients (above), from the corner positions the crushed test reads anyway. kUniform: every
 // cell has the grid's uniform coefficients (times its occupancy: 1 or 0, the same bits), which
 // spares the loop 6-8 streams of per-cell values (its loads from memory were most of its time).
 template <bool kWithRate, bool kTwist, bool kUniform>
-CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
+CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const LayerArrays& a, bool count_crushed) {
   const int count = layer_points(grid, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
   const Eigen::Array3d tension_per_stress = grid.cell_size.prod() * inverse_edge_sum;
@@ -315,6 +315,7 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
       tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
     }
   }
+  if (!kTwist && !count_crushed) return 0;
   // a loop of its own: together, the two need more vector registers than there are
   const double* __restrict twist_stiffness = kTwist && !kUniform ? from_layer(grid.cell_twist, grid, slab) : nullptr;
   const double uniform_twist = grid.uniform_twist;
@@ -358,7 +359,7 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
       qz[g] = twist_coefficient(z_lower, z_upper, stiffness, h);
     }
   }
-  return crushed;
+  return count_crushed ? crushed : 0;
 }
 
 // Pass 3 for edge family f on one z-layer: the edge at g belongs to the cells at g, g - b, g - c,
@@ -469,9 +470,10 @@ struct LayerPasses {
   const LayerArrays& a;
   bool with_rate;
 
-  void measure(int slab) const {  // needs the positions of slab and slab + 1
+  // the first `families` families (the edges, or all); needs the positions of slab and slab + 1
+  void measure(int slab, int families = kSpringFamilies) const {
     if (slab < 0 || slab >= grid.points.z()) return;
-    for (int f = 0; f < kSpringFamilies; ++f) {
+    for (int f = 0; f < families; ++f) {
       if (with_rate) {
         measure_springs<true>(grid, f, slab, a);
       } else {
@@ -479,22 +481,25 @@ struct LayerPasses {
       }
     }
   }
-  int cells(int slab) const {  // needs measure(slab) and measure(slab + 1)
+  // the crushed cells if count_crushed, else 0; needs measure(slab) and measure(slab + 1)
+  int cells(int slab, bool count_crushed = true) const {
     if (slab < 0) return 0;
     if (slab >= grid.cell_slabs) {  // the top layer of points
       zero_layer(grid, a, kCellTension, 3, slab);
       zero_layer(grid, a, kCellTwist, 3, slab);
       return 0;
     }
-    if (grid.uniform_cells) return cell_pass_of_kind<true>(slab);
-    return cell_pass_of_kind<false>(slab);
+    if (grid.uniform_cells) return cell_pass_of_kind<true>(slab, count_crushed);
+    return cell_pass_of_kind<false>(slab, count_crushed);
   }
   template <bool kUniform>
-  int cell_pass_of_kind(int slab) const {
+  int cell_pass_of_kind(int slab, bool count_crushed) const {
     if (grid.has_twist) {
-      return with_rate ? cell_pass<true, true, kUniform>(grid, slab, a) : cell_pass<false, true, kUniform>(grid, slab, a);
+      return with_rate ? cell_pass<true, true, kUniform>(grid, slab, a, count_crushed)
+                       : cell_pass<false, true, kUniform>(grid, slab, a, count_crushed);
     }
-    return with_rate ? cell_pass<true, false, kUniform>(grid, slab, a) : cell_pass<false, false, kUniform>(grid, slab, a);
+    return with_rate ? cell_pass<true, false, kUniform>(grid, slab, a, count_crushed)
+                     : cell_pass<false, false, kUniform>(grid, slab, a, count_crushed);
   }
   // needs cells(slab) and cells(slab - 1); the twist also measure(slab - 1) and measure(slab + 1)
   void edge_tensions(int slab) const {
@@ -564,10 +569,15 @@ struct ChunkResults {
 template <typename Barrier>
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Scratch& scratch,
                int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
-  // chunks of equal cell layers (the top point layer has none, so the last chunk's is light);
-  // the earlier chunks take the odd layer: the later ones recompute their first layers' input
+  // chunks of equal work: a chunk after the first recomputes about a layer below its own
+  // (below), so it takes a layer of cells fewer: the layers are split as if there were
+  // chunks - 1 more, each chunk but the first then gives one back. Every chunk keeps a layer at
+  // least (cell_slabs >= chunks); the last, which also has the top layer of points, may have
+  // only that.
   const auto boundary = [&](int k) {
-    return k == chunks ? grid.points.z() : (grid.cell_slabs * k + chunks - 1) / chunks;
+    if (k == 0) return 0;
+    if (k == chunks) return grid.points.z();
+    return ((grid.cell_slabs + chunks - 1) * k + chunks - 1) / chunks - (k - 1);
   };
   const Range layers{boundary(chunk), boundary(chunk + 1)};
   const Range nodes = nodes_in_layers(grid, layers);
@@ -578,12 +588,14 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   const LayerPasses passes{grid, a, with_rate};
   const int first = layers.begin;
   // the spring forces of the layer below (nothing below the grid): its edge tensions need the
-  // cells of the 2 layers below, and the twist the edge vectors of the layer below those
-  passes.measure(first - 2);
+  // cells of the 2 layers below (not their crushed counts: those are the chunk below's), and
+  // the twist the edge vectors of the layer below those (edges only: no gather here reads the
+  // diagonals of that layer)
+  passes.measure(first - 2, kEdgeFamilies);
   passes.measure(first - 1);
-  passes.cells(first - 2);
+  passes.cells(first - 2, false);
   passes.measure(first);
-  passes.cells(first - 1);
+  passes.cells(first - 1, false);
   passes.edge_tensions(first - 1);
   int crushed = 0;
   for (int slab = first; slab < layers.end; ++slab) {

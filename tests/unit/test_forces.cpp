@@ -315,9 +315,10 @@ TEST(Forces, GridPassesTakeAChangedDiagonalAndCell) {
 // The grid passes cut the z-layers of cells into one chunk per thread (at most one per 4096
 // points and per layer of cells); a chunk recomputes the spring forces of the layer below its
 // first in its own ring of layers. Any thread count gives the same bits, and the lists' forces
-// to rounding: a plate of 3 layers of cells (16384 points: with 3 or 4 threads, chunks of one
-// layer each, which recompute the layers below down to the grid's bottom), in the exact-bending
-// model, and a box of 14 layers (9375 points: 2 chunks), each with a crushed cell.
+// to rounding: a plate of 3 layers of cells (16384 points: with 3 or 4 threads, chunks of 2
+// layers, 1 layer, and the top layer of points alone, which recompute the layers below theirs),
+// in the exact-bending model, and a box of 14 layers (9375 points: 2 chunks), each with a
+// crushed cell.
 TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
