@@ -42,7 +42,9 @@ enum GridSlot : int {
 };
 // The passes' temporaries, kept for kRingLayers z-layers only, per thread: a ring that holds
 // layer L in place L % kRingLayers, so that they stay in cache (the whole grid's temporaries
-// spill out of L2 from 32x8x8 cells on, and out of L3 from 32x32x32).
+// spill out of L2 from 32x8x8 cells on, and out of L3 from 32x32x32). The top layer of points
+// has a place of its own: no z-edge, diagonal or cell starts there, so their arrays in that
+// place keep the zeros they were first set to.
 enum LayerSlot : int {
   kCellTension = kGridSlots,  // x, y, z
   // per family x, y, z: the spring's force on its first end (edges: the unit vector until pass 3)
@@ -57,6 +59,7 @@ enum LayerSlot : int {
 constexpr int kLayerSlots = kSlots - kGridSlots;
 // The passes of layer L read the temporaries of layers L - 1 to L + 1 (run_chunk).
 constexpr int kRingLayers = 3;
+constexpr int kRingPlaces = kRingLayers + 1;
 
 // A layer's values of one slot, index i for point layer * stride_z + i. The grid's slots run on
 // through the other layers; a ring's hold their layer, and zeros a row and a point beyond it on
@@ -67,14 +70,17 @@ class LayerArrays {
       : grid_(grid), grid_arrays_(grid_arrays), zeros_(zeros), ring_(ring) {}
 
   /// `slot` at the points g + step of layer `layer` (step in cells along x, y, z).
-  const double* in(int slot, int layer, const Eigen::Vector3i& step = Eigen::Vector3i::Zero()) const {
+  [[gnu::always_inline]] const double* in(int slot, int layer,
+                                          const Eigen::Vector3i& step = Eigen::Vector3i::Zero()) const {
     const int in_layer = step.x() + grid_.stride_y * step.y();
     layer += step.z();
-    if (slot >= kGridSlots && layer < 0) return zeros_ + layer_padding(grid_) + in_layer;
+    if (slot >= kGridSlots && layer < 0) return zeros_ + ring_offset(slot) + in_layer;
     return place(slot, layer) + in_layer;
   }
+  /// A ring's slots of one layer lie this far apart (the x, y, z of a vector, for instance).
+  std::size_t slot_stride() const { return layer_stride(grid_); }
   /// Only layers of the grid are written (the passes return for the layers beyond it).
-  double* out(int slot, int layer) const {
+  [[gnu::always_inline]] double* out(int slot, int layer) const {
     assert(layer >= 0);
     return place(slot, layer);
   }
@@ -88,13 +94,17 @@ class LayerArrays {
   }
 
  private:
-  double* place(int slot, int layer) const {
+  [[gnu::always_inline]] double* place(int slot, int layer) const {
     assert(layer >= 0 && layer < grid_.points.z());
     if (slot < kGridSlots) {
       return grid_arrays_ + grid_stride(grid_) * slot + grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
     }
-    const std::size_t array = static_cast<std::size_t>(layer % kRingLayers) * kLayerSlots + (slot - kGridSlots);
-    return ring_ + layer_stride(grid_) * array + layer_padding(grid_);
+    const int ring_place = layer == grid_.points.z() - 1 ? kRingLayers : layer % kRingLayers;
+    return ring_ + layer_stride(grid_) * kLayerSlots * static_cast<std::size_t>(ring_place) + ring_offset(slot);
+  }
+  // where a slot's values begin in a layer of the ring
+  std::size_t ring_offset(int slot) const {
+    return layer_stride(grid_) * static_cast<std::size_t>(slot - kGridSlots) + layer_padding(grid_);
   }
 
   const GridLayout& grid_;
@@ -103,12 +113,12 @@ class LayerArrays {
   double* ring_;
 };
 
-// The scratch vector: the grid's slots, a layer of zeros, then a ring per thread.
+// The scratch vector: the grid's slots, a layer of zeros (every slot), then a ring per thread.
 class Scratch {
  public:
   Scratch(const GridLayout& grid, int rings, std::vector<double>& scratch) : grid_(grid) {
     const std::size_t size = LayerArrays::grid_stride(grid) * kGridSlots +
-                             LayerArrays::layer_stride(grid) * (1 + static_cast<std::size_t>(rings) * kRingLayers * kLayerSlots);
+                             LayerArrays::layer_stride(grid) * kLayerSlots * (1 + static_cast<std::size_t>(rings) * kRingPlaces);
     if (scratch.size() != size) {
       scratch.assign(size, 0.0);  // the paddings and the points outside the body stay as set here
       base_ = scratch.data();
@@ -122,8 +132,8 @@ class Scratch {
   /// The arrays of the thread that uses ring `ring`.
   LayerArrays arrays(int ring) const {
     double* zeros = base_ + LayerArrays::grid_stride(grid_) * kGridSlots;
-    const std::size_t ring_size = LayerArrays::layer_stride(grid_) * kRingLayers * kLayerSlots;
-    double* first_ring = zeros + LayerArrays::layer_stride(grid_);
+    const std::size_t ring_size = LayerArrays::layer_stride(grid_) * kRingPlaces * kLayerSlots;
+    double* first_ring = zeros + LayerArrays::layer_stride(grid_) * kLayerSlots;
     return LayerArrays(grid_, base_, zeros, first_ring + ring_size * static_cast<std::size_t>(ring));
   }
 
@@ -131,12 +141,6 @@ class Scratch {
   const GridLayout& grid_;
   double* base_ = nullptr;
 };
-
-// Zeros in the arrays `slots` .. `slots + count - 1` of a layer that a pass does not compute
-// (the ring holds an older layer's values there).
-void zero_layer(const GridLayout& grid, const LayerArrays& a, int slot, int count, int layer) {
-  for (int s = slot; s < slot + count; ++s) std::fill_n(a.out(s, layer), grid.stride_z, 0.0);
-}
 
 // The points of a z-layer that a loop over its first `rows` y-rows covers (whole rows).
 inline int layer_points(const GridLayout& grid, int rows) { return rows * grid.stride_y; }
@@ -213,13 +217,8 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
 
 template <bool kWithRate>
 void measure_springs(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
-  if (slab >= grid.families[f].slabs) {  // the top layer has no z-edges or cells: no springs there
-    zero_layer(grid, a, kFamilyForce + 3 * f, 3, slab);
-    if (f < kEdgeFamilies) {
-      for (const int slot : {kEdgeLength + f, kEdgeRate + f, kEdgeOwnTension + f}) zero_layer(grid, a, slot, 1, slab);
-      zero_layer(grid, a, kEdgeVector + 3 * f, 3, slab);
-    }
-  } else if (f >= kEdgeFamilies && grid.families[f].per_cell) {
+  if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges or cells: its zeros stay
+  if (f >= kEdgeFamilies && grid.families[f].per_cell) {
     measure_family<kWithRate, true, false, true>(grid, f, slab, a);
   } else if (f >= kEdgeFamilies) {
     measure_family<kWithRate, true, false>(grid, f, slab, a);
@@ -445,12 +444,18 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
 // g towards their other end; those that end at g (at g - to) pull it back.
 CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.points.y());
+  const double* starting_x[kSpringFamilies];
+  const double* ending_x[kSpringFamilies];
+  for (int f = 0; f < kSpringFamilies; ++f) {
+    starting_x[f] = a.in(kFamilyForce + 3 * f, slab, -grid.families[f].from_corner);
+    ending_x[f] = a.in(kFamilyForce + 3 * f, slab, -grid.families[f].to_corner);
+  }
   for (int axis = 0; axis < 3; ++axis) {
     const double* starting[kSpringFamilies];
     const double* ending[kSpringFamilies];
-    for (int f = 0; f < kSpringFamilies; ++f) {
-      starting[f] = a.in(kFamilyForce + 3 * f + axis, slab, -grid.families[f].from_corner);
-      ending[f] = a.in(kFamilyForce + 3 * f + axis, slab, -grid.families[f].to_corner);
+    for (int f = 0; f < kSpringFamilies; ++f) {  // y and z follow x in the ring
+      starting[f] = starting_x[f] + axis * a.slot_stride();
+      ending[f] = ending_x[f] + axis * a.slot_stride();
     }
     double* __restrict force = a.out(kForce + axis, slab);
 #pragma omp simd
@@ -484,11 +489,7 @@ struct LayerPasses {
   // the crushed cells if count_crushed, else 0; needs measure(slab) and measure(slab + 1)
   int cells(int slab, bool count_crushed = true) const {
     if (slab < 0) return 0;
-    if (slab >= grid.cell_slabs) {  // the top layer of points
-      zero_layer(grid, a, kCellTension, 3, slab);
-      zero_layer(grid, a, kCellTwist, 3, slab);
-      return 0;
-    }
+    if (slab >= grid.cell_slabs) return 0;  // the top layer of points: its zeros stay
     if (grid.uniform_cells) return cell_pass_of_kind<true>(slab, count_crushed);
     return cell_pass_of_kind<false>(slab, count_crushed);
   }
