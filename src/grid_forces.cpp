@@ -405,30 +405,23 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
   const double* __restrict q2_1 = q(d2, -s1);
   const double* __restrict q2_2 = q(d2, -s2);
   const double* __restrict q2_12 = q(d2, -s1 - s2);
-  // the faces' o-edge vectors, component by component: o = d2 for the faces normal to d1
-  const double* m1[3][4];  // [component][at g, g + e, g - s2, g - s2 + e]
-  const double* m2[3][4];  // [component][at g, g + e, g - s1, g - s1 + e]
-  for (int k = 0; k < 3; ++k) {
-    const int slot1 = kEdgeVector + 3 * d2 + k, slot2 = kEdgeVector + 3 * d1 + k;
-    const Eigen::Vector3i steps1[4] = {Eigen::Vector3i::Zero(), e, -s2, e - s2};
-    const Eigen::Vector3i steps2[4] = {Eigen::Vector3i::Zero(), e, -s1, e - s1};
-    for (int j = 0; j < 4; ++j) {
-      m1[k][j] = a.in(slot1, slab, steps1[j]);
-      m2[k][j] = a.in(slot2, slab, steps2[j]);
-    }
-  }
-  double* __restrict force[3] = {a.out(kFamilyForce + 3 * f, slab), a.out(kFamilyForce + 3 * f + 1, slab),
-                                 a.out(kFamilyForce + 3 * f + 2, slab)};
+  // the faces' o-edge vectors' x (y and z follow in the ring): o = d2 for the faces normal to d1
+  const double* m1_x[4] = {a.in(kEdgeVector + 3 * d2, slab), a.in(kEdgeVector + 3 * d2, slab, e),
+                           a.in(kEdgeVector + 3 * d2, slab, -s2), a.in(kEdgeVector + 3 * d2, slab, e - s2)};
+  const double* m2_x[4] = {a.in(kEdgeVector + 3 * d1, slab), a.in(kEdgeVector + 3 * d1, slab, e),
+                           a.in(kEdgeVector + 3 * d1, slab, -s1), a.in(kEdgeVector + 3 * d1, slab, e - s1)};
+  double* const force_x = a.out(kFamilyForce + 3 * f, slab);
   for (int k = 0; k < 3; ++k) {  // a loop per component: all three at once need too many registers
-    const double* __restrict m1_0 = m1[k][0];
-    const double* __restrict m1_e = m1[k][1];
-    const double* __restrict m1_2 = m1[k][2];
-    const double* __restrict m1_2e = m1[k][3];
-    const double* __restrict m2_0 = m2[k][0];
-    const double* __restrict m2_e = m2[k][1];
-    const double* __restrict m2_1 = m2[k][2];
-    const double* __restrict m2_1e = m2[k][3];
-    double* __restrict out = force[k];
+    const std::size_t component = k * a.slot_stride();
+    const double* __restrict m1_0 = m1_x[0] + component;   // at g
+    const double* __restrict m1_e = m1_x[1] + component;   // at g + e
+    const double* __restrict m1_2 = m1_x[2] + component;   // at g - s2
+    const double* __restrict m1_2e = m1_x[3] + component;  // at g - s2 + e
+    const double* __restrict m2_0 = m2_x[0] + component;
+    const double* __restrict m2_e = m2_x[1] + component;
+    const double* __restrict m2_1 = m2_x[2] + component;   // at g - s1
+    const double* __restrict m2_1e = m2_x[3] + component;
+    double* __restrict out = force_x + component;
 #pragma omp simd
     for (int g = 0; g < count; ++g) {
       // normal d1: faces at g and g - s2; normal d2: faces at g and g - s1
