@@ -12,8 +12,10 @@ namespace cubespring {
 namespace {
 
 // The sweep, for bodies with and without mass damping and nodal loads (arrays that may be empty,
-// so their reads cannot hide behind a select).
-template <bool kMassDamping, bool kNodal>
+// so their reads cannot hide behind a select). kContiguous: the nodes' points are the nodes'
+// own numbers shifted by point_of_node[begin] - begin (a box: every point is a node), so the
+// spring forces are plain loads, not gathers through point_of_node.
+template <bool kMassDamping, bool kNodal, bool kContiguous>
 CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restrict point_of_node,
                                            const double* const spring_force[3], int begin, int end,
                                            double* __restrict forces) {
@@ -32,9 +34,10 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
   const double kick = k.kick.kick, drift = k.kick.drift;
   double fastest_sq = 0.0;
   int not_finite = 0;
+  const int shift = begin < end ? point_of_node[begin] - begin : 0;
 #pragma omp simd reduction(max : fastest_sq) reduction(+ : not_finite)
   for (int n = begin; n < end; ++n) {
-    const int g = point_of_node[n];
+    const int g = kContiguous ? n + shift : point_of_node[n];
     const double spring[3] = {fx[g], fy[g], fz[g]};
     const double m = mass[n];
     const double rate = kick / m;
@@ -67,12 +70,22 @@ double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const dou
   assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const bool nodal = kick.loads.nodal_forces.cols() == kick.model.num_nodes();
   double* out = forces.data();
-  if (kick.mass_damping) {
-    return nodal ? kick_nodes<true, true>(kick, point_of_node, spring_force, begin, end, out)
-                 : kick_nodes<true, false>(kick, point_of_node, spring_force, begin, end, out);
+  // point_of_node increases: the points of the range are contiguous when its ends are
+  const bool contiguous = begin == end || point_of_node[end - 1] - point_of_node[begin] == end - 1 - begin;
+  if (contiguous) {
+    if (kick.mass_damping) {
+      return nodal ? kick_nodes<true, true, true>(kick, point_of_node, spring_force, begin, end, out)
+                   : kick_nodes<true, false, true>(kick, point_of_node, spring_force, begin, end, out);
+    }
+    return nodal ? kick_nodes<false, true, true>(kick, point_of_node, spring_force, begin, end, out)
+                 : kick_nodes<false, false, true>(kick, point_of_node, spring_force, begin, end, out);
   }
-  return nodal ? kick_nodes<false, true>(kick, point_of_node, spring_force, begin, end, out)
-               : kick_nodes<false, false>(kick, point_of_node, spring_force, begin, end, out);
+  if (kick.mass_damping) {
+    return nodal ? kick_nodes<true, true, false>(kick, point_of_node, spring_force, begin, end, out)
+                 : kick_nodes<true, false, false>(kick, point_of_node, spring_force, begin, end, out);
+  }
+  return nodal ? kick_nodes<false, true, false>(kick, point_of_node, spring_force, begin, end, out)
+               : kick_nodes<false, false, false>(kick, point_of_node, spring_force, begin, end, out);
 }
 
 }  // namespace cubespring
