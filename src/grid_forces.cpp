@@ -97,7 +97,8 @@ class LayerArrays {
   [[gnu::always_inline]] double* place(int slot, int layer) const {
     assert(layer >= 0 && layer < grid_.points.z());
     if (slot < kGridSlots) {
-      return grid_arrays_ + grid_stride(grid_) * slot + grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
+      const std::size_t point = grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
+      return grid_arrays_ + grid_stride(grid_) * slot + point;
     }
     const int ring_place = layer == grid_.points.z() - 1 ? kRingLayers : layer % kRingLayers;
     return ring_ + layer_stride(grid_) * kLayerSlots * static_cast<std::size_t>(ring_place) + ring_offset(slot);
@@ -117,8 +118,8 @@ class LayerArrays {
 class Scratch {
  public:
   Scratch(const GridLayout& grid, int rings, std::vector<double>& scratch) : grid_(grid) {
-    const std::size_t size = LayerArrays::grid_stride(grid) * kGridSlots +
-                             LayerArrays::layer_stride(grid) * kLayerSlots * (1 + static_cast<std::size_t>(rings) * kRingPlaces);
+    const std::size_t layer = LayerArrays::layer_stride(grid) * kLayerSlots;
+    const std::size_t size = LayerArrays::grid_stride(grid) * kGridSlots + layer * (1 + rings * std::size_t{kRingPlaces});
     if (scratch.size() != size) {
       scratch.assign(size, 0.0);  // the paddings and the points outside the body stay as set here
       base_ = scratch.data();
@@ -151,9 +152,9 @@ inline const double* from_layer(const std::vector<double>& values, const GridLay
 inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
 
 // Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist);
-// kPerCell: a diagonal family whose stiffness is the same in every cell (SpringFamily::per_cell),
+// kUniform: a diagonal family whose stiffness is the same in every cell (SpringFamily::uniform),
 // taken times the cell's occupancy (the same bits) to spare a stream of per-point values.
-template <bool kWithRate, bool kDiagonal, bool kKeepVector, bool kPerCell = false>
+template <bool kWithRate, bool kDiagonal, bool kKeepVector, bool kUniform = false>
 CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   const int count = layer_points(grid, family.rows);
@@ -175,7 +176,7 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
   double* __restrict vector_y = a.out(kEdgeVector + 3 * e + 1, slab);
   double* __restrict vector_z = a.out(kEdgeVector + 3 * e + 2, slab);
   const double* __restrict stiffness = from_layer(family.stiffness, grid, slab);
-  const double* __restrict damping = kWithRate && !kPerCell ? from_layer(family.damping, grid, slab) : nullptr;
+  const double* __restrict damping = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;
   const double* __restrict occupied = from_layer(grid.cell_occupied, grid, slab);
   const double cell_stiffness = family.cell_stiffness, cell_damping = family.cell_damping;
   const double rest = family.rest_length;
@@ -188,11 +189,11 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
     const double ez = z[g + to] - z[g + from];
     const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
     const double inverse = length > degenerate ? 1.0 / length : 0.0;
-    double own = (kPerCell ? occupied[g] * cell_stiffness : stiffness[g]) * (length - rest);
+    double own = (kUniform ? occupied[g] * cell_stiffness : stiffness[g]) * (length - rest);
     if constexpr (kWithRate) {
       const double rate = ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey +
                            (vz[g + to] - vz[g + from]) * ez) * inverse;
-      own += (kPerCell ? occupied[g] * cell_damping : damping[g]) * rate;
+      own += (kUniform ? occupied[g] * cell_damping : damping[g]) * rate;
       if constexpr (!kDiagonal) rate_out[g] = rate;
     }
     if constexpr (kDiagonal) {
@@ -218,7 +219,7 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
 template <bool kWithRate>
 void measure_springs(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges or cells: its zeros stay
-  if (f >= kEdgeFamilies && grid.families[f].per_cell) {
+  if (f >= kEdgeFamilies && grid.families[f].uniform) {
     measure_family<kWithRate, true, false, true>(grid, f, slab, a);
   } else if (f >= kEdgeFamilies) {
     measure_family<kWithRate, true, false>(grid, f, slab, a);
@@ -259,10 +260,11 @@ inline double twist_coefficient(double lower_4, double upper_4, double stiffness
   return 0.5 * stiffness * h * ((upper - lower) / (h * h));
 }
 
-// Pass 2 on one z-layer of cells; returns its crushed cells (0 unless count_crushed). With kTwist, also the cells' twist
-// coefficients (above), from the corner positions the crushed test reads anyway. kUniform: every
-// cell has the grid's uniform coefficients (times its occupancy: 1 or 0, the same bits), which
-// spares the loop 6-8 streams of per-cell values (its loads from memory were most of its time).
+// Pass 2 on one z-layer of cells; returns its crushed cells (0 unless count_crushed). With
+// kTwist, also the cells' twist coefficients (above), from the corner positions the crushed
+// test reads anyway. kUniform: every cell has the grid's uniform coefficients (times its
+// occupancy: 1 or 0, the same bits), which spares the loop 6-8 streams of per-cell values (its
+// loads from memory were most of its time).
 template <bool kWithRate, bool kTwist, bool kUniform>
 CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const LayerArrays& a, bool count_crushed) {
   const int count = layer_points(grid, grid.cell_rows);
@@ -528,7 +530,7 @@ CUBESPRING_VECTOR_CLONES void copy_in(const GridLayout& grid, const Eigen::Matri
   const double* __restrict from = values.data();
   const int* __restrict point_of_node = grid.point_of_node.data();
   if (nodes.begin == nodes.end) return;
-  // point_of_node increases: the points of the range are contiguous when its ends are (a box),
+  // point_of_node strictly increases: the points of the range are contiguous when its ends are,
   // and the copy is a plain sweep the compiler vectorises
   const int shift = point_of_node[nodes.begin] - nodes.begin;
   if (point_of_node[nodes.end - 1] - shift == nodes.end - 1) {
@@ -575,11 +577,12 @@ struct ChunkResults {
 // Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
 // share of the z-layers and runs the passes layer after layer in its own ring of temporaries.
 // Its first gather needs the spring forces of the layer below, another chunk's: the chunk
-// recomputes them (2 layers of springs and cells, 1 of edge tensions) rather than wait for that
-// chunk, so that chunks share only the positions and velocities, which every chunk copies in
-// before any reads them, and their counts of crushed cells. Then each chunk finishes the nodes of its layers, whose forces are complete once its own
-// gathers are: the kick when asked and no cell of the body is crushed (their recovery comes
-// first, on the caller's side), else the forces alone.
+// recomputes them (the springs and cells of 2 layers, the edge tensions of 1) rather than wait
+// for that chunk, so that chunks share only the positions and velocities, which every chunk
+// copies in before any reads them, and their counts of crushed cells. Then each chunk finishes
+// the nodes of its layers, whose forces are complete once its own gathers are: the kick when
+// asked and no cell of the body is crushed (their recovery comes first, on the caller's side),
+// else the forces alone.
 template <typename Barrier>
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Scratch& scratch,
                int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
@@ -603,7 +606,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   const int first = layers.begin;
   // the spring forces of the layer below (nothing below the grid): its edge tensions need the
   // cells of the 2 layers below (not their crushed counts: those are the chunk below's), and
-  // the twist the edge vectors of the layer below those (edges only: no gather here reads the
+  // the twist the edge vectors of the lower of them (edges only: no gather here reads the
   // diagonals of that layer)
   passes.measure(first - 2, kEdgeFamilies);
   passes.measure(first - 1);

@@ -13,8 +13,8 @@ namespace {
 
 // The sweep, for bodies with and without mass damping and nodal loads (arrays that may be empty,
 // so their reads cannot hide behind a select). kContiguous: the nodes' points are the nodes'
-// own numbers shifted by point_of_node[begin] - begin (a box: every point is a node), so the
-// spring forces are plain loads, not gathers through point_of_node.
+// own numbers shifted by point_of_node[begin] - begin (in a box, for one, every point is a
+// node), so the spring forces are plain loads, not gathers through point_of_node.
 template <bool kMassDamping, bool kNodal, bool kContiguous>
 CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restrict point_of_node,
                                            const double* const spring_force[3], int begin, int end,
@@ -70,7 +70,7 @@ double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const dou
   assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const bool nodal = kick.loads.nodal_forces.cols() == kick.model.num_nodes();
   double* out = forces.data();
-  // point_of_node increases: the points of the range are contiguous when its ends are
+  // point_of_node strictly increases: the points of the range are contiguous when its ends are
   const bool contiguous = begin == end || point_of_node[end - 1] - point_of_node[begin] == end - 1 - begin;
   if (contiguous) {
     if (kick.mass_damping) {

@@ -3,6 +3,7 @@
 #include "grid_layout.h"
 
 #include <algorithm>
+#include <functional>
 
 #include <cmath>
 
@@ -26,8 +27,8 @@ int family_of_step(const Eigen::Vector3i& step) {
 void set_uniform_cells(const Model& model, GridLayout& grid) {
   const int first = grid.point(model.cell_grid_index[0]);
   const auto same_in_every_cell = [&](const std::vector<double>& values) {
-    return values.empty() || std::all_of(model.cell_grid_index.begin(), model.cell_grid_index.end(),
-                                         [&](const Eigen::Vector3i& cell) { return values[grid.point(cell)] == values[first]; });
+    const auto same_as_first = [&](const Eigen::Vector3i& cell) { return values[grid.point(cell)] == values[first]; };
+    return values.empty() || std::all_of(model.cell_grid_index.begin(), model.cell_grid_index.end(), same_as_first);
   };
   grid.uniform_cells = std::all_of(grid.correction.begin(), grid.correction.end(), same_in_every_cell) &&
                        same_in_every_cell(grid.cell_twist) && same_in_every_cell(grid.cell_beta);
@@ -38,15 +39,15 @@ void set_uniform_cells(const Model& model, GridLayout& grid) {
 }
 
 // Whether every diagonal of family f has the stiffness and damping of the first occupied cell's.
-void set_per_cell_diagonals(GridLayout& grid, int f) {
+void set_uniform_diagonals(GridLayout& grid, int f) {
   SpringFamily& family = grid.families[f];
   const auto& occupied = grid.cell_occupied;
   const auto first = std::find(occupied.begin(), occupied.end(), 1.0) - occupied.begin();
   family.cell_stiffness = family.stiffness[first];
   family.cell_damping = family.damping.empty() ? 0.0 : family.damping[first];
-  family.per_cell = true;
-  for (std::size_t p = 0; p < occupied.size() && family.per_cell; ++p) {
-    family.per_cell = family.stiffness[p] == occupied[p] * family.cell_stiffness &&
+  family.uniform = true;
+  for (std::size_t p = 0; p < occupied.size() && family.uniform; ++p) {
+    family.uniform = family.stiffness[p] == occupied[p] * family.cell_stiffness &&
                       (family.damping.empty() || family.damping[p] == occupied[p] * family.cell_damping);
   }
 }
@@ -91,7 +92,11 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
   grid.point_of_node.resize(model.num_nodes());
   for (int n = 0; n < model.num_nodes(); ++n) grid.point_of_node[n] = grid.point(model.node_grid_index[n]);
   // nodes come z-major, x fastest (model.cpp): a thread's layers hold a contiguous range of them
-  if (!std::is_sorted(grid.point_of_node.begin(), grid.point_of_node.end())) return nullptr;
+  // (and the points of nodes strictly increase: the kick and copy-in rely on it)
+  if (std::adjacent_find(grid.point_of_node.begin(), grid.point_of_node.end(), std::greater_equal<>()) !=
+      grid.point_of_node.end()) {
+    return nullptr;
+  }
 
   const int step_of_axis[3] = {1, grid.stride_y, grid.stride_z};
   for (int f = 0; f < kSpringFamilies; ++f) {
@@ -150,7 +155,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
     }
   }
   set_uniform_cells(model, grid);
-  for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) set_per_cell_diagonals(grid, f);
+  for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) set_uniform_diagonals(grid, f);
   return layout;
 }
 

@@ -29,7 +29,7 @@ struct SpringFamily {
   std::vector<double> damping;      ///< beta times stiffness [N s/m]; empty without stiffness damping
   /// A diagonal family of a body of one material: stiffness and damping are these times
   /// cell_occupied at every point, and the passes read the cells' occupancy instead.
-  bool per_cell = false;
+  bool uniform = false;
   double cell_stiffness = 0.0, cell_damping = 0.0;
 };
 inline constexpr int kEdgeFamilies = 3;
