@@ -579,10 +579,10 @@ struct ChunkResults {
 // Its first gather needs the spring forces of the layer below, another chunk's: the chunk
 // recomputes them (the springs and cells of 2 layers, the edge tensions of 1) rather than wait
 // for that chunk, so that chunks share only the positions and velocities, which every chunk
-// copies in before any reads them, and their counts of crushed cells. Then each chunk finishes
-// the nodes of its layers, whose forces are complete once its own gathers are: the kick when
-// asked and no cell of the body is crushed (their recovery comes first, on the caller's side),
-// else the forces alone.
+// copies in before any reads them. Then each chunk finishes the nodes of its layers, whose
+// forces are complete once its own gathers are: the kick when asked, without waiting to learn
+// whether another chunk found a crushed cell (then grid_spring_forces puts the spring forces
+// back and the caller kicks again after the recovery), else the forces alone.
 template <typename Barrier>
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Scratch& scratch,
                int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
@@ -622,8 +622,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
     passes.gather(slab);
   }
   results.crushed[chunk] = crushed;
-  barrier();
-  if (kick != nullptr && results.total_crushed() == 0) {
+  if (kick != nullptr) {  // at once: if a cell turns out crushed, grid_spring_forces undoes it
     const double* force[3] = {a.in(kForce, 0), a.in(kForce + 1, 0), a.in(kForce + 2, 0)};
     results.fastest_sq[chunk] =
         kick_grid_nodes(*kick, grid.point_of_node.data(), force, nodes.begin, nodes.end, forces);
@@ -652,6 +651,11 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   GridForces out;
   out.crushed = results.total_crushed();
   out.kicked = kick != nullptr && out.crushed == 0;
+  if (kick != nullptr && !out.kicked) {
+    // the chunks kicked without waiting to know (a crushed cell is rare): the caller adds the
+    // recovery and kicks again from the spring forces, which are still in the grid's arrays
+    copy_out(grid, arrays.arrays(0), kForce, Range{0, num_nodes}, forces);
+  }
   for (double fastest_sq : results.fastest_sq) out.fastest_sq = faster(fastest_sq, out.fastest_sq);
   return out;
 }

@@ -31,7 +31,8 @@ struct GridForces {
 /// springs' and correction's Rayleigh damping when with_rate. No inversion recovery. When `kick`
 /// is given and no cell is crushed, the forces also get the loads and mass damping and the nodes
 /// their kick (grid_kick.h); when cells are crushed, the caller adds their recovery, loads and
-/// kick. `scratch` keeps the grid's arrays between calls; clear it before using it with another
+/// kick (kick.to then holds a kick without the recovery, which the caller's overwrites).
+/// `scratch` keeps the grid's arrays between calls; clear it before using it with another
 /// layout (entries the passes never write must stay as first set).
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                               std::vector<double>& scratch, Eigen::Matrix3Xd& forces,
