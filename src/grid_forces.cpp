@@ -26,122 +26,12 @@
 
 #include "cubespring/forces.h"
 #include "force_passes.h"
+#include "grid_arrays.h"
 #include "thread_shares.h"
 #include "vector_clones.h"
 
 namespace cubespring {
 namespace {
-
-// Arrays of every point of the grid, each padded by grid.padding points on both sides: the state
-// the passes read and the forces they make.
-enum GridSlot : int {
-  kPosition = 0,  // x, y, z
-  kVelocity = 3,  // x, y, z
-  kForce = 6,     // x, y, z
-  kGridSlots = 9
-};
-// The passes' temporaries, kept for kRingLayers z-layers only, per thread: a ring that holds
-// layer L in place L % kRingLayers, so that they stay in cache (the whole grid's temporaries
-// spill out of L2 from 32x8x8 cells on, and out of L3 from 32x32x32). The top layer of points
-// has a place of its own: no z-edge, diagonal or cell starts there, so their arrays in that
-// place keep the zeros they were first set to.
-enum LayerSlot : int {
-  kCellTension = kGridSlots,  // x, y, z
-  // per family x, y, z: the spring's force on its first end (edges: the unit vector until pass 3)
-  kFamilyForce = kCellTension + 3,
-  kEdgeLength = kFamilyForce + 3 * kSpringFamilies,
-  kEdgeRate = kEdgeLength + kEdgeFamilies,
-  kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
-  kEdgeVector = kEdgeOwnTension + kEdgeFamilies,  // x, y, z per edge family (twist only)
-  kCellTwist = kEdgeVector + 3 * kEdgeFamilies,   // Q per face normal x, y, z (twist only)
-  kSlots = kCellTwist + 3
-};
-constexpr int kLayerSlots = kSlots - kGridSlots;
-// The passes of layer L read the temporaries of layers L - 1 to L + 1 (run_chunk).
-constexpr int kRingLayers = 3;
-constexpr int kRingPlaces = kRingLayers + 1;
-
-// A layer's values of one slot, index i for point layer * stride_z + i. The grid's slots run on
-// through the other layers; a ring's hold their layer, and zeros a row and a point beyond it on
-// both sides (the in-layer reach of a spring or a cell); layers below the grid read as zeros.
-class LayerArrays {
- public:
-  LayerArrays(const GridLayout& grid, double* grid_arrays, const double* zeros, double* ring)
-      : grid_(grid), grid_arrays_(grid_arrays), zeros_(zeros), ring_(ring) {}
-
-  /// `slot` at the points g + step of layer `layer` (step in cells along x, y, z).
-  [[gnu::always_inline]] const double* in(int slot, int layer,
-                                          const Eigen::Vector3i& step = Eigen::Vector3i::Zero()) const {
-    const int in_layer = step.x() + grid_.stride_y * step.y();
-    layer += step.z();
-    if (slot >= kGridSlots && layer < 0) return zeros_ + ring_offset(slot) + in_layer;
-    return place(slot, layer) + in_layer;
-  }
-  /// A ring's slots of one layer lie this far apart (the x, y, z of a vector, for instance).
-  std::size_t slot_stride() const { return layer_stride(grid_); }
-  /// Only layers of the grid are written (the passes return for the layers beyond it).
-  [[gnu::always_inline]] double* out(int slot, int layer) const {
-    assert(layer >= 0);
-    return place(slot, layer);
-  }
-
-  static int layer_padding(const GridLayout& grid) { return grid.stride_y + 1; }
-  static std::size_t layer_stride(const GridLayout& grid) {
-    return static_cast<std::size_t>(grid.stride_z + 2 * layer_padding(grid));
-  }
-  static std::size_t grid_stride(const GridLayout& grid) {
-    return static_cast<std::size_t>(grid.num_points + 2 * grid.padding);
-  }
-
- private:
-  [[gnu::always_inline]] double* place(int slot, int layer) const {
-    assert(layer >= 0 && layer < grid_.points.z());
-    if (slot < kGridSlots) {
-      const std::size_t point = grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
-      return grid_arrays_ + grid_stride(grid_) * slot + point;
-    }
-    const int ring_place = layer == grid_.points.z() - 1 ? kRingLayers : layer % kRingLayers;
-    return ring_ + layer_stride(grid_) * kLayerSlots * static_cast<std::size_t>(ring_place) + ring_offset(slot);
-  }
-  // where a slot's values begin in a layer of the ring
-  std::size_t ring_offset(int slot) const {
-    return layer_stride(grid_) * static_cast<std::size_t>(slot - kGridSlots) + layer_padding(grid_);
-  }
-
-  const GridLayout& grid_;
-  double* grid_arrays_;
-  const double* zeros_;
-  double* ring_;
-};
-
-// The scratch vector: the grid's slots, a layer of zeros (every slot), then a ring per thread.
-class Scratch {
- public:
-  Scratch(const GridLayout& grid, int rings, std::vector<double>& scratch) : grid_(grid) {
-    const std::size_t layer = LayerArrays::layer_stride(grid) * kLayerSlots;
-    const std::size_t size = LayerArrays::grid_stride(grid) * kGridSlots + layer * (1 + rings * std::size_t{kRingPlaces});
-    if (scratch.size() != size) {
-      scratch.assign(size, 0.0);  // the paddings and the points outside the body stay as set here
-      base_ = scratch.data();
-      for (int axis = 0; axis < 3; ++axis) {
-        double* position = arrays(0).out(kPosition + axis, 0);
-        for (int p = 0; p < grid.num_points; ++p) position[p] = grid.rest_points(axis, p);
-      }
-    }
-    base_ = scratch.data();
-  }
-  /// The arrays of the thread that uses ring `ring`.
-  LayerArrays arrays(int ring) const {
-    double* zeros = base_ + LayerArrays::grid_stride(grid_) * kGridSlots;
-    const std::size_t ring_size = LayerArrays::layer_stride(grid_) * kRingPlaces * kLayerSlots;
-    double* first_ring = zeros + LayerArrays::layer_stride(grid_) * kLayerSlots;
-    return LayerArrays(grid_, base_, zeros, first_ring + ring_size * static_cast<std::size_t>(ring));
-  }
-
- private:
-  const GridLayout& grid_;
-  double* base_ = nullptr;
-};
 
 // The points of a z-layer that a loop over its first `rows` y-rows covers (whole rows).
 inline int layer_points(const GridLayout& grid, int rows) { return rows * grid.stride_y; }
@@ -584,8 +474,9 @@ struct ChunkResults {
 // whether another chunk found a crushed cell (then grid_spring_forces puts the spring forces
 // back and the caller kicks again after the recovery), else the forces alone.
 template <typename Barrier>
-void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick, const Scratch& scratch,
-               int chunk, int chunks, const Barrier& barrier, ChunkResults& results, Eigen::Matrix3Xd& forces) {
+void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick,
+               const GridScratch& scratch, int chunk, int chunks, const Barrier& barrier, ChunkResults& results,
+               Eigen::Matrix3Xd& forces) {
   // chunks of equal work: a chunk after the first recomputes about a layer below its own
   // (below), so it takes a layer of cells fewer: the layers are split as if there were
   // chunks - 1 more, each chunk but the first then gives one back. Every chunk keeps a layer at
@@ -641,7 +532,7 @@ int grid_threads(const GridLayout& grid, int threads) {
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                               std::vector<double>& scratch, Eigen::Matrix3Xd& forces, const GridKick* kick) {
   const int team = grid_threads(grid, threads);
-  const Scratch arrays(grid, team, scratch);
+  const GridScratch arrays(grid, team, scratch);
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   ChunkResults results;
