@@ -420,10 +420,8 @@ CUBESPRING_VECTOR_CLONES void copy_in(const GridLayout& grid, const Eigen::Matri
   const double* __restrict from = values.data();
   const int* __restrict point_of_node = grid.point_of_node.data();
   if (nodes.begin == nodes.end) return;
-  // point_of_node strictly increases: the points of the range are contiguous when its ends are,
-  // and the copy is a plain sweep the compiler vectorises
   const int shift = point_of_node[nodes.begin] - nodes.begin;
-  if (point_of_node[nodes.end - 1] - shift == nodes.end - 1) {
+  if (on_consecutive_points(point_of_node, nodes.begin, nodes.end)) {  // a sweep the compiler vectorises
 #pragma omp simd
     for (int n = nodes.begin; n < nodes.end; ++n) {
       x[n + shift] = from[3 * n];

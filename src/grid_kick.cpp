@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "grid_layout.h"
 #include "vector_clones.h"
 
 namespace cubespring {
@@ -70,9 +71,7 @@ double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const dou
   assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const bool nodal = kick.loads.nodal_forces.cols() == kick.model.num_nodes();
   double* out = forces.data();
-  // point_of_node strictly increases: the points of the range are contiguous when its ends are
-  const bool contiguous = begin == end || point_of_node[end - 1] - point_of_node[begin] == end - 1 - begin;
-  if (contiguous) {
+  if (on_consecutive_points(point_of_node, begin, end)) {
     if (kick.mass_damping) {
       return nodal ? kick_nodes<true, true, true>(kick, point_of_node, spring_force, begin, end, out)
                    : kick_nodes<true, false, true>(kick, point_of_node, spring_force, begin, end, out);

@@ -69,6 +69,12 @@ struct GridLayout {
   }
 };
 
+/// Whether nodes [begin, end) lie on consecutive grid points (a box's do): point_of_node strictly
+/// increases, so its ends tell. Then node n is at point n + point_of_node[begin] - begin.
+inline bool on_consecutive_points(const int* point_of_node, int begin, int end) {
+  return begin == end || point_of_node[end - 1] - point_of_node[begin] == end - 1 - begin;
+}
+
 /// Bodies that fill less of their bounding box than this use the spring lists instead: the grid
 /// passes spend their work on every point of the box.
 inline constexpr double kMinGridFill = 0.5;
