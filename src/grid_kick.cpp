@@ -34,9 +34,9 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
   const double gravity[3] = {k.loads.gravity.x(), k.loads.gravity.y(), k.loads.gravity.z()};
   const double kick = k.kick.kick, drift = k.kick.drift;
   double fastest_sq = 0.0;
-  int not_finite = 0;
+  double poison = 0.0;  // a sum of (a - a): 0 while every a is finite, NaN after any is not
   const int shift = begin < end ? point_of_node[begin] - begin : 0;
-#pragma omp simd reduction(max : fastest_sq) reduction(+ : not_finite)
+#pragma omp simd reduction(max : fastest_sq) reduction(+ : poison)
   for (int n = begin; n < end; ++n) {
     const int g = kContiguous ? n + shift : point_of_node[n];
     const double spring[3] = {fx[g], fy[g], fz[g]};
@@ -56,12 +56,12 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
       const double x = x0[i] + drift * v;
       x1[i] = x;
       speed_sq += v * v;
-      not_finite += static_cast<int>(!(std::abs(x) <= std::numeric_limits<double>::max()));
+      poison += x - x;
     }
-    not_finite += static_cast<int>(!(speed_sq <= std::numeric_limits<double>::max()));
+    poison += speed_sq - speed_sq;
     fastest_sq = fastest_sq > speed_sq ? fastest_sq : speed_sq;
   }
-  return not_finite > 0 ? std::numeric_limits<double>::quiet_NaN() : fastest_sq;
+  return std::isnan(poison) ? std::numeric_limits<double>::quiet_NaN() : fastest_sq;
 }
 
 }  // namespace
