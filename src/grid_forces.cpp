@@ -40,6 +40,7 @@ inline const double* from_layer(const std::vector<double>& values, const GridLay
   return values.data() + static_cast<std::size_t>(slab) * grid.stride_z;
 }
 inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
+constexpr int kZEdges = 2;  // the family of the z-edges (grid_layout.h)
 
 // Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist);
 // kUniform: a diagonal family whose stiffness is the same in every cell (SpringFamily::uniform),
@@ -387,10 +388,11 @@ struct LayerPasses {
     return with_rate ? cell_pass<true, false, kUniform>(grid, slab, a, count_crushed)
                      : cell_pass<false, false, kUniform>(grid, slab, a, count_crushed);
   }
-  // needs cells(slab) and cells(slab - 1); the twist also measure(slab - 1) and measure(slab + 1)
-  void edge_tensions(int slab) const {
+  // edge families first_family on; needs cells(slab) and cells(slab - 1) (the z-edges cells(slab)
+  // only); the twist also measure(slab - 1) and measure(slab + 1) (the z-edges measure(slab + 1))
+  void edge_tensions(int slab, int first_family = 0) const {
     if (slab < 0) return;
-    for (int f = 0; f < kEdgeFamilies; ++f) {
+    for (int f = first_family; f < kEdgeFamilies; ++f) {
       edge_tension_pass(grid, f, slab, a);
       if (grid.has_twist) twist_edge_pass(grid, f, slab, a);
     }
@@ -493,16 +495,14 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   barrier();
   const LayerPasses passes{grid, a, with_rate};
   const int first = layers.begin;
-  // the spring forces of the layer below (nothing below the grid): its edge tensions need the
-  // cells of the 2 layers below (not their crushed counts: those are the chunk below's), and
-  // the twist the edge vectors of the lower of them (edges only: no gather here reads the
-  // diagonals of that layer)
-  passes.measure(first - 2, kEdgeFamilies);
+  // the springs of the layer below that end in this chunk's first layer (nothing below the
+  // grid): its z-edges and diagonals. The z-edges' tensions need the cells of that layer only
+  // (not their crushed counts: those are the chunk below's); its x- and y-edges, which would need
+  // the layer below it, stay as they are: no gather here reads them.
   passes.measure(first - 1);
-  passes.cells(first - 2, false);
   passes.measure(first);
   passes.cells(first - 1, false);
-  passes.edge_tensions(first - 1);
+  passes.edge_tensions(first - 1, kZEdges);
   int crushed = 0;
   for (int slab = first; slab < layers.end; ++slab) {
     passes.measure(slab + 1);
