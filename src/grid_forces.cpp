@@ -389,7 +389,7 @@ struct LayerPasses {
                      : cell_pass<false, false, kUniform>(grid, slab, a, count_crushed);
   }
   // edge families first_family on; needs cells(slab) and cells(slab - 1) (the z-edges cells(slab)
-  // only); the twist also measure(slab - 1) and measure(slab + 1) (the z-edges measure(slab + 1))
+  // only); the twist also measure(slab - 1) (x- and y-edges) or measure(slab + 1) (z-edges)
   void edge_tensions(int slab, int first_family = 0) const {
     if (slab < 0) return;
     for (int f = first_family; f < kEdgeFamilies; ++f) {
@@ -467,7 +467,7 @@ struct ChunkResults {
 // Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
 // share of the z-layers and runs the passes layer after layer in its own ring of temporaries.
 // Its first gather needs the spring forces of the layer below, another chunk's: the chunk
-// recomputes them (the springs and cells of 2 layers, the edge tensions of 1) rather than wait
+// recomputes them (the springs and cells of that layer, its z-edges' tensions) rather than wait
 // for that chunk, so that chunks share only the positions and velocities, which every chunk
 // copies in before any reads them. Then each chunk finishes the nodes of its layers, whose
 // forces are complete once its own gathers are: the kick when asked, without waiting to learn
