@@ -523,7 +523,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
 }  // namespace
 
 int grid_threads(const GridLayout& grid, int threads) {
-  constexpr int kMinPointsPerThread = 4096;
+  constexpr int kMinPointsPerThread = 1024;
   return std::max(1, std::min({threads, kMaxGridThreads, grid.cell_slabs, grid.num_points / kMinPointsPerThread}));
 }
 

@@ -15,7 +15,7 @@
 
 namespace cubespring {
 
-/// Threads the grid passes use of `threads` asked: one per 4096 points at most, one per z-layer
+/// Threads the grid passes use of `threads` asked: one per 1024 points at most, one per z-layer
 /// of cells, and 64 at most (a second thread costs more than it gives on fewer points: cubespring
 /// bench).
 int grid_threads(const GridLayout& grid, int threads);

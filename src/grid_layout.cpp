@@ -54,7 +54,7 @@ void set_uniform_diagonals(GridLayout& grid, int f) {
 
 }  // namespace
 
-std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
+std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double min_fill) {
   if (model.num_cells() == 0 ||
       static_cast<int>(model.cell_grid_index.size()) != model.num_cells() ||
       static_cast<int>(model.node_grid_index.size()) != model.num_nodes()) {
@@ -67,7 +67,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
   }
   const Eigen::Vector3i cells = upper - lower + Eigen::Vector3i::Ones();
   const double box_cells = static_cast<double>(cells.x()) * cells.y() * cells.z();
-  if (model.num_cells() < kMinGridFill * box_cells) return nullptr;
+  if (!(model.num_cells() >= min_fill * box_cells)) return nullptr;  // NaN: never
 
   auto layout = std::make_shared<GridLayout>();
   GridLayout& grid = *layout;
@@ -159,6 +159,6 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model) {
   return layout;
 }
 
-void update_grid_layout(Model& model) { model.grid_layout = build_grid_layout(model); }
+void update_grid_layout(Model& model, double min_fill) { model.grid_layout = build_grid_layout(model, min_fill); }
 
 }  // namespace cubespring

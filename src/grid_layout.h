@@ -75,12 +75,9 @@ inline bool on_consecutive_points(const int* point_of_node, int begin, int end) 
   return begin == end || point_of_node[end - 1] - point_of_node[begin] == end - 1 - begin;
 }
 
-/// Bodies that fill less of their bounding box than this use the spring lists instead: the grid
-/// passes spend their work on every point of the box.
-inline constexpr double kMinGridFill = 0.5;
-
-/// The grid layout of a built model, or null when the model does not suit it (a box filled less
-/// than kMinGridFill, or cells whose springs are not the lattice's).
-std::shared_ptr<const GridLayout> build_grid_layout(const Model& model);
+/// The grid layout of a built model, or null when the model does not suit it: a box filled less
+/// than min_fill (the grid passes spend their work on every point of the box), or cells whose
+/// springs are not the lattice's.
+std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double min_fill = kDefaultMinGridFill);
 
 }  // namespace cubespring

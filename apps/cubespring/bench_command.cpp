@@ -3,12 +3,10 @@
 // cubespring bench: time per step of each integrator on blocks and a voxelized sphere, beside a
 // bare spring-force pass over the same springs (the floor a full step is compared with).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <iostream>
-#include <limits>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -19,13 +17,12 @@
 #include "bench_support.h"
 #include "commands.h"
 #include "grid_spring_floor.h"
+#include "step_timing.h"
 #include "cubespring/constraints.h"
 #include "cubespring/integrator.h"
 
 namespace cubespring::app {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 struct BenchOptions {
   std::string sizes = "16,4,4;32,8,8;64,16,16;32,32,32;64,64,64";
@@ -35,37 +32,6 @@ struct BenchOptions {
   int implicit_max_cells = 40000; // implicit steps are timed up to this many cells
   bool json = false;
 };
-
-// Times fn() repeatedly for at least min_seconds and returns the mean time per call [s].
-template <typename Fn>
-double time_per_call(double min_seconds, Fn&& fn) {
-  fn();  // warm-up: caches, first-touch allocations
-  int calls = 0;
-  const auto start = Clock::now();
-  double elapsed = 0.0;
-  do {
-    fn();
-    ++calls;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  } while (elapsed < min_seconds);
-  return elapsed / calls;
-}
-
-// Batches of the compared measurements, taken in turn (a, b, c, a, b, c, ...): a burst of load on
-// this shared machine then slows one batch of each rather than one whole column.
-constexpr int kBatches = 5;
-
-// The mean time per call [s] of each function, as the fastest of kBatches batches of at least
-// min_seconds / kBatches each, the functions' batches interleaved.
-std::vector<double> interleaved_best_times(double min_seconds, const std::vector<std::function<void()>>& functions) {
-  std::vector<double> best(functions.size(), std::numeric_limits<double>::infinity());
-  for (int batch = 0; batch < kBatches; ++batch) {
-    for (std::size_t f = 0; f < functions.size(); ++f) {
-      best[f] = std::min(best[f], time_per_call(min_seconds / kBatches, functions[f]));
-    }
-  }
-  return best;
-}
 
 // The floor: one pass of linear spring forces, f = k (l - l0) d / l, over the springs grouped by
 // their first node (whose sum stays in a register), scattered to the second node.
@@ -86,49 +52,12 @@ void bare_spring_pass(const Model& model, const Eigen::Matrix3Xd& x, Eigen::Matr
   }
 }
 
-LatticeDesc sphere_lattice(int across, double cell_size, const Material& material) {
-  LatticeDesc desc;
-  desc.cell_size.setConstant(cell_size);
-  desc.materials = {material};
-  const double radius = 0.5 * across;
-  for (int k = 0; k < across; ++k) {
-    for (int j = 0; j < across; ++j) {
-      for (int i = 0; i < across; ++i) {
-        const Eigen::Vector3d centre = Eigen::Vector3d(i, j, k).array() + 0.5 - radius;
-        if (centre.norm() <= radius) desc.cells.emplace_back(i, j, k);
-      }
-    }
-  }
-  return desc;
-}
-
 struct Row {
   std::string name;
   int cells = 0, nodes = 0, springs = 0;
   double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
   int implicit_iterations = 0;
-};
-
-// One explicit step of a body under clamp and gravity per call, at half its stable step.
-class ExplicitStepper {
- public:
-  ExplicitStepper(const Model& model, const Constraints& clamp, const Loads& loads, const State& start,
-                  Integrator integrator, int threads)
-      : model_(model), clamp_(clamp), loads_(loads), state_(start), stepper_(model) {
-    settings_.integrator = integrator;
-    settings_.threads = threads;
-    settings_.time_step = 0.5 * max_stable_time_step(model);
-  }
-  void operator()() { (void)stepper_.step(model_, clamp_, loads_, settings_, state_); }
-
- private:
-  const Model& model_;
-  const Constraints& clamp_;
-  const Loads& loads_;
-  StepSettings settings_;
-  State state_;
-  Stepper stepper_;
 };
 
 // `box`: the body's cell counts when it is a box (for the floor with implicit connectivity).
@@ -216,7 +145,7 @@ int run_bench(const BenchOptions& o) {
     }
     if (o.sphere_cells_across > 0) {
       rows.push_back(bench_body("sphere " + std::to_string(o.sphere_cells_across),
-                                sphere_lattice(o.sphere_cells_across, 0.01, material), o));
+                                ball_lattice(o.sphere_cells_across, 0.01, material), o));
     }
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -35,4 +35,20 @@ std::vector<Eigen::Vector3i> parse_size_list(const std::string& text) {
   return sizes;
 }
 
+LatticeDesc ball_lattice(int across, double cell_size, const Material& material, double hollow) {
+  LatticeDesc desc;
+  desc.cell_size.setConstant(cell_size);
+  desc.materials = {material};
+  const double radius = 0.5 * across;
+  for (int k = 0; k < across; ++k) {
+    for (int j = 0; j < across; ++j) {
+      for (int i = 0; i < across; ++i) {
+        const double distance = (Eigen::Vector3d(i, j, k).array() + 0.5 - radius).matrix().norm();
+        if (distance <= radius && distance >= hollow * radius) desc.cells.emplace_back(i, j, k);
+      }
+    }
+  }
+  return desc;
+}
+
 }  // namespace cubespring::app

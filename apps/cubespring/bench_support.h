@@ -1,12 +1,15 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// What the bench commands share: the machine they ran on, and their list of block sizes.
+// What the bench commands share: the machine they ran on, their list of block sizes, and the
+// voxelized ball they bench beside the blocks.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "cubespring/lattice.h"
 
 namespace cubespring::app {
 
@@ -15,5 +18,10 @@ std::string cpu_name();
 
 /// "NX,NY,NZ;NX,NY,NZ;..." as block sizes; throws std::runtime_error naming --sizes.
 std::vector<Eigen::Vector3i> parse_size_list(const std::string& text);
+
+/// The cells of `across`^3 whose centres lie in the ball inscribed in that box and outside the
+/// concentric ball of `hollow` times its radius (0: a solid ball), cubes of cell_size [m], one
+/// material.
+LatticeDesc ball_lattice(int across, double cell_size, const Material& material, double hollow = 0.0);
 
 }  // namespace cubespring::app

@@ -15,6 +15,7 @@ Command add_measure_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_voxelize_command(CLI::App& app);
 Command add_bench_voxelize_command(CLI::App& app);
+Command add_bench_layout_command(CLI::App& app);
 /// Only with Bullet (CUBESPRING_HAS_BULLET).
 Command add_bench_bullet_command(CLI::App& app);
 /// Only with Bullet and the renderer (CUBESPRING_HAS_DEMO); with no subcommand, main runs it.

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   commands["bench"] = cubespring::app::add_bench_command(app);
   commands["voxelize"] = cubespring::app::add_voxelize_command(app);
   commands["bench-voxelize"] = cubespring::app::add_bench_voxelize_command(app);
+  commands["bench-layout"] = cubespring::app::add_bench_layout_command(app);
 #ifdef CUBESPRING_HAS_BULLET
   commands["bench-bullet"] = cubespring::app::add_bench_bullet_command(app);
 #endif

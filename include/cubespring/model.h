@@ -80,8 +80,8 @@ struct Model {
   std::vector<int> force_block_reach;
 
   /// The body on the dense grid of its bounding box, which the explicit force passes use instead
-  /// of the spring lists when the body fills at least half the box (docs/data-layout.md); null
-  /// otherwise. Built by build_model() from the arrays above, it
+  /// of the spring lists when the body fills at least kDefaultMinGridFill of the box
+  /// (docs/data-layout.md); null otherwise. Built by build_model() from the arrays above, it
   /// keeps its own copy of the stiffnesses: after changing them, call update_grid_layout().
   std::shared_ptr<const GridLayout> grid_layout;
 
@@ -105,9 +105,16 @@ struct Model {
 /// cell shape) and builds the model. Errors name the value at fault and the allowed range.
 Result<Model> build_model(const LatticeDesc& desc);
 
+/// The fraction of its bounding box's cells a body fills at least for build_model() to put it on
+/// the grid passes: from it the grid stepped every benched body faster, below it the spring lists
+/// stepped some faster (`cubespring bench-layout`, docs/data-layout.md).
+inline constexpr double kDefaultMinGridFill = 0.45;
+
 /// Rebuilds model.grid_layout from the model's arrays, after a change to a built model's
-/// stiffnesses, damping or corrections.
-void update_grid_layout(Model& model);
+/// stiffnesses, damping or corrections. The grid is built when the cells fill at least min_fill
+/// of their bounding box (0: whenever the lattice allows; above 1, or NaN: never) and the
+/// spring lists are used otherwise; both give the same forces to rounding.
+void update_grid_layout(Model& model, double min_fill = kDefaultMinGridFill);
 
 /// Per-cell spring stiffnesses and correction of one material and cell shape
 /// (docs/model-baudet2007.md, sections 2-4).

@@ -1,8 +1,10 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // Forces: equilibrium at rest, energy gradient, invariance, balance, the correction's size and sign.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -207,7 +209,7 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
   }
 }
 
-// The grid passes (bodies that fill at least half their bounding box) add the same springs,
+// The grid passes (bodies that fill at least 45% of their bounding box) add the same springs,
 // correction, twist, damping and inversion recovery as the spring lists, to rounding: a box, a
 // box with holes and a stiff inclusion of another material, the same holes in one material, in
 // both models, each with a crushed cell and with a spring of zero length (no direction: no force).
@@ -318,13 +320,13 @@ TEST(Forces, GridPassesTakeAChangedDiagonalOrCell) {
   }
 }
 
-// The grid passes cut the z-layers of cells into one chunk per thread (at most one per 4096
+// The grid passes cut the z-layers of cells into one chunk per thread (at most one per 1024
 // points and per layer of cells); a chunk recomputes the spring forces of the layer below its
 // first in its own ring of layers. Any thread count gives the same bits, and the lists' forces
 // to rounding: a plate of 3 layers of cells (16384 points: with 3 or 4 threads, chunks of 2
 // layers, 1 layer, and the top layer of points alone, which recompute the layers below theirs),
-// in the exact-bending model, and a box of 14 layers (9375 points: 2 chunks), each with a
-// crushed cell.
+// in the exact-bending model, and a box of 14 layers (9375 points: 2, 3 and 4 chunks), each
+// with a crushed cell.
 TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
@@ -375,23 +377,48 @@ TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
   EXPECT_EQ(std::memcmp(forces.data(), expected.data(), sizeof(double) * forces.size()), 0);
 }
 
-// Which bodies the grid passes take: those that fill at least half their box.
-TEST(Forces, GridPassesTakeOnlyBodiesThatFillHalfTheirBox) {
-  LatticeDesc diagonal_line;
-  diagonal_line.cell_size.setConstant(0.01);
-  diagonal_line.materials = {notes_material(0.3)};
-  for (int i = 0; i < 4; ++i) diagonal_line.cells.push_back({i, i, 0});  // 4 of 16 cells of its box
-  ASSERT_TRUE(build_model(diagonal_line).ok());
-  EXPECT_EQ(build_model(diagonal_line).value().grid_layout, nullptr);
-  diagonal_line.cells.push_back({1, 0, 0});  // 5 of 16
-  diagonal_line.cells.push_back({2, 1, 0});
-  diagonal_line.cells.push_back({3, 2, 0});  // 7 of 16
-  EXPECT_EQ(build_model(diagonal_line).value().grid_layout, nullptr);
-  diagonal_line.cells.push_back({0, 1, 0});  // 8 of 16: half
-  EXPECT_NE(build_model(diagonal_line).value().grid_layout, nullptr);
+// Which bodies the grid passes take: those that fill at least kDefaultMinGridFill (0.45) of their
+// box, or whatever fill update_grid_layout() is given; a sparse body forced onto the grid, its
+// box mostly empty points, still gets the forces of the spring lists.
+TEST(Forces, GridPassesTakeBodiesThatFillEnoughOfTheirBox) {
+  ASSERT_EQ(kDefaultMinGridFill, 0.45);  // the fills below are chosen about it
+  LatticeDesc sparse;
+  sparse.cell_size.setConstant(0.01);
+  sparse.materials = {notes_material(0.3)};
+  for (int i = 0; i < 5; ++i) sparse.cells.push_back({i, std::min(i, 3), 0});  // 5 of the 20 cells of a 5x4 box
+  const Result<Model> built = build_model(sparse);
+  ASSERT_TRUE(built.ok()) << built.message();
+  EXPECT_EQ(built.value().grid_layout, nullptr);
+  LatticeDesc denser = sparse;
+  denser.cells.push_back({1, 0, 0});
+  denser.cells.push_back({2, 1, 0});
+  denser.cells.push_back({3, 2, 0});  // 8 of 20: 0.40
+  EXPECT_EQ(build_model(denser).value().grid_layout, nullptr);
+  denser.cells.push_back({0, 1, 0});  // 9 of 20: 0.45
+  EXPECT_NE(build_model(denser).value().grid_layout, nullptr);
   LatticeDesc exact = box_lattice({3, 2, 2}, Eigen::Vector3d::Constant(0.01), notes_material(0.3));
   exact.model = CellModel::kExactBending;
   EXPECT_NE(build_model(exact).value().grid_layout, nullptr);
+
+  Model on_grid = built.value();
+  update_grid_layout(on_grid, 0.0);
+  ASSERT_NE(on_grid.grid_layout, nullptr);
+  const State state = disturbed_state(on_grid, false);
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  ForceWorkspace grid_ws, lists_ws;
+  Eigen::Matrix3Xd by_grid, by_lists;
+  compute_forces(on_grid, state, loads, ForceOptions{true, 1}, grid_ws, by_grid);
+  compute_forces(built.value(), state, loads, ForceOptions{true, 1}, lists_ws, by_lists);
+  EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * by_lists.cwiseAbs().maxCoeff());
+
+  Model full = build_model(exact).value();
+  update_grid_layout(full, 1.01);
+  EXPECT_EQ(full.grid_layout, nullptr);
+  update_grid_layout(full, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(full.grid_layout, nullptr);
+  update_grid_layout(full, 1.0);
+  EXPECT_NE(full.grid_layout, nullptr);
 }
 
 TEST(Forces, GravityPullsEveryMass) {

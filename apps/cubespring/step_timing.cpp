@@ -1,0 +1,47 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "step_timing.h"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "cubespring/stable_time_step.h"
+
+namespace cubespring::app {
+
+double time_per_call(double min_seconds, const std::function<void()>& fn) {
+  using Clock = std::chrono::steady_clock;
+  fn();  // warm-up: caches, first-touch allocations
+  int calls = 0;
+  const auto start = Clock::now();
+  double elapsed = 0.0;
+  do {
+    fn();
+    ++calls;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  } while (elapsed < min_seconds);
+  return elapsed / calls;
+}
+
+std::vector<double> interleaved_best_times(double min_seconds, const std::vector<std::function<void()>>& functions) {
+  std::vector<double> best(functions.size(), std::numeric_limits<double>::infinity());
+  for (int batch = 0; batch < kBatches; ++batch) {
+    for (std::size_t f = 0; f < functions.size(); ++f) {
+      best[f] = std::min(best[f], time_per_call(min_seconds / kBatches, functions[f]));
+    }
+  }
+  return best;
+}
+
+ExplicitStepper::ExplicitStepper(const Model& model, const Constraints& constraints, const Loads& loads,
+                                 const State& start, Integrator integrator, int threads)
+    : model_(model), constraints_(constraints), loads_(loads), state_(start), stepper_(model) {
+  settings_.integrator = integrator;
+  settings_.threads = threads;
+  settings_.time_step = 0.5 * max_stable_time_step(model);
+}
+
+void ExplicitStepper::operator()() { (void)stepper_.step(model_, constraints_, loads_, settings_, state_); }
+
+}  // namespace cubespring::app
