@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <limits>
 
 #include <cmath>
 
@@ -68,6 +69,11 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   const Eigen::Vector3i cells = upper - lower + Eigen::Vector3i::Ones();
   const double box_cells = static_cast<double>(cells.x()) * cells.y() * cells.z();
   if (!(model.num_cells() >= min_fill * box_cells)) return nullptr;  // NaN: never
+  // points are indexed by int, with a layer and a row of padding on each side (a sparse body's
+  // box, taken at a small min_fill, may be far larger than the body)
+  const Eigen::Vector3d points = (cells + Eigen::Vector3i::Ones()).cast<double>();
+  const double padded_points = points.prod() + 2.0 * (points.x() * points.y() + points.x() + 1.0);
+  if (padded_points > static_cast<double>(std::numeric_limits<int>::max())) return nullptr;
 
   auto layout = std::make_shared<GridLayout>();
   GridLayout& grid = *layout;

@@ -38,6 +38,9 @@ struct LayoutRow {
   bool default_grid = false;                   // what build_model() picks
 };
 
+// A solid ball fills about pi / 6 of its box: the most a ball can.
+const double kSolidBallFill = std::acos(-1.0) / 6.0;
+
 std::vector<double> parse_fills(const std::string& text) {
   std::vector<double> fills;
   std::stringstream stream(text);
@@ -50,8 +53,8 @@ std::vector<double> parse_fills(const std::string& text) {
     } catch (const std::exception&) {
       used = 0;
     }
-    if (used != item.size() || !(fill > 0.0 && fill <= 1.0)) {
-      throw std::runtime_error("--fills: '" + item + "' is not a fraction in (0, 1]");
+    if (used != item.size() || !(fill > 0.0 && fill <= kSolidBallFill)) {
+      throw std::runtime_error("--fills: '" + item + "' is not a fraction in (0, 0.52] (a solid ball fills 0.52 of its box)");
     }
     fills.push_back(fill);
   }
@@ -68,11 +71,10 @@ double box_fill(const Model& model) {
   return model.num_cells() / (upper - lower + Eigen::Vector3i::Ones()).cast<double>().prod();
 }
 
-// A hollow ball of about `fill` of its box (a solid ball fills about pi / 6 of it), in one
-// material or with a stiff third (E x 10: the grid then streams per-point coefficients).
+// A hollow ball of about `fill` of its box, in one material or with a stiff third (E x 10: the
+// grid then streams per-point coefficients).
 LatticeDesc hollow_ball(int across, double fill, bool inclusion) {
-  const double solid = std::acos(-1.0) / 6.0;
-  const double hollow = fill < solid ? std::cbrt(1.0 - fill / solid) : 0.0;
+  const double hollow = std::cbrt(1.0 - fill / kSolidBallFill);
   LatticeDesc desc = ball_lattice(across, 0.01, Material{}, hollow);
   if (inclusion) {
     Material stiff;
@@ -123,7 +125,9 @@ const char* materials_name(bool inclusion) { return inclusion ? "inclusion" : "o
 int run_bench_layout(const LayoutOptions& o) {
   std::vector<LayoutRow> rows;
   try {
-    if (o.cells_across < 4) throw std::runtime_error("--cells-across: expected at least 4");
+    if (o.cells_across < 4 || o.cells_across > 256) {
+      throw std::runtime_error("--cells-across: " + std::to_string(o.cells_across) + " is outside 4..256");
+    }
     for (const double fill : parse_fills(o.fills)) {
       for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
         for (const bool inclusion : {false, true}) {

@@ -186,16 +186,18 @@ TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
 
 // A short bench-layout run: each fill in both models, one material and with an inclusion, on the
 // same hollow ball (the same cell count), near the fill asked; the layout build_model() picks is
-// the grid exactly from kDefaultMinGridFill (0.45) on; every time positive. A fill that is not a
-// fraction is refused by name.
+// the grid exactly from kDefaultMinGridFill (0.45) on (a ball of 20 across fills 0.450: 3600 of
+// 8000 cells); every time positive. A fill that is not a fraction is refused by name.
 TEST(Cli, BenchLayoutTimesBothLayoutsByFill) {
-  const nlohmann::json rows = run_json("bench-layout --cells-across 12 --fills 0.3,0.5 --min-seconds 0.01");
+  const nlohmann::json rows = run_json("bench-layout --cells-across 20 --fills 0.3,0.45 --min-seconds 0.01");
   ASSERT_TRUE(rows.is_array());
   ASSERT_EQ(rows.size(), 8u);
+  EXPECT_EQ(rows[4]["cells"], 3600);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const nlohmann::json& row = rows[i];
-    const double asked = i < 4 ? 0.3 : 0.5;
-    EXPECT_NEAR(row["fill"].get<double>(), asked, 0.05) << row.dump();
+    const double asked = i < 4 ? 0.3 : 0.45;
+    EXPECT_NEAR(row["fill"].get<double>(), asked, 0.02) << row.dump();
+    EXPECT_EQ(row["default_layout"], i < 4 ? "lists" : "grid") << row.dump();
     EXPECT_EQ(row["cells"], rows[i < 4 ? 0 : 4]["cells"]) << row.dump();
     EXPECT_EQ(row["model"], i % 4 < 2 ? "baudet2007" : "exact-bending") << row.dump();
     EXPECT_EQ(row["materials"], i % 2 == 0 ? "one" : "inclusion") << row.dump();
@@ -204,9 +206,9 @@ TEST(Cli, BenchLayoutTimesBothLayoutsByFill) {
       for (const char* threads : {"1", "2"}) EXPECT_GT(row[layout][threads].get<double>(), 0.0) << row.dump();
     }
   }
-  const ToolRun bad = run_tool("bench-layout --fills 0.3,1.5");
+  const ToolRun bad = run_tool("bench-layout --fills 0.3,0.8");
   EXPECT_NE(bad.exit_code, 0);
-  EXPECT_NE(bad.out.find("--fills: '1.5' is not a fraction in (0, 1]"), std::string::npos) << bad.out;
+  EXPECT_NE(bad.out.find("--fills: '0.8' is not a fraction in (0, 0.52]"), std::string::npos) << bad.out;
 }
 
 #ifdef CUBESPRING_HAS_BULLET
