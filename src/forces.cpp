@@ -346,9 +346,50 @@ struct NodeLoads {
   }
 };
 
+// Which cells are crushed (ws.cell_crushed), when some are.
+void find_crushed_cells(const Model& model, const State& state, ForceWorkspace& ws) {
+  const double crushed_volume = kCrushedVolumeFraction * model.rest_cell_volume();
+  for (int c = 0; c < model.num_cells(); ++c) {
+    ws.cell_crushed[c] = cell_signed_volume(model, state.positions, c) < crushed_volume;
+  }
+}
+
+// What finish(n) of every node would return, from the state a kick made: the largest squared
+// speed, NaN if a position is not finite.
+double fastest_after_kick(const State& kicked) {
+  double fastest_sq = 0.0;
+  for (Eigen::Index n = 0; n < kicked.positions.cols(); ++n) {
+    const double speed_sq = kicked.positions.col(n).allFinite() ? kicked.velocities.col(n).squaredNorm()
+                                                                : std::numeric_limits<double>::quiet_NaN();
+    fastest_sq = faster(speed_sq, fastest_sq);
+  }
+  return fastest_sq;
+}
+
+// The grid passes kicked every node without the recovery of the crushed cells: the corners of
+// those cells get their spring forces back, the recovery and finish(n) again; every other node's
+// kick is the one finish would give (its force has no recovery term).
+template <typename Finish>
+double redo_crushed_corners(const Model& model, const State& state, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
+                            const Finish& finish, const State& kicked) {
+  find_crushed_cells(model, state, ws);
+  std::vector<int> corners;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    if (!ws.cell_crushed[c]) continue;
+    corners.insert(corners.end(), model.cell_nodes[c].begin(), model.cell_nodes[c].end());
+  }
+  std::sort(corners.begin(), corners.end());
+  corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+  for (int n : corners) forces.col(n) = grid_spring_force(*model.grid_layout, ws.grid_arrays, n);
+  apply_inversion_forces(model, state.positions, ws, forces);
+  for (int n : corners) (void)finish(n);
+  return fastest_after_kick(kicked);
+}
+
 // The forces of a body on its dense grid (grid_forces.h), then the inversion recovery and
 // finish(n) of every node, the nodes cut into the force blocks. `kick`, when given, is finish's
-// kick, which the grid passes do themselves when no cell is crushed. Returns what run_passes does.
+// kick, which the grid passes do themselves (then only the crushed cells' corners are redone).
+// Returns what run_passes does.
 template <typename Finish>
 double grid_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick) {
@@ -360,12 +401,12 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const GridForces grid =
       grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces, kick);
-  if (grid.kicked) return grid.fastest_sq;
+  if (kick != nullptr) {
+    if (grid.crushed == 0) return grid.fastest_sq;
+    return redo_crushed_corners(model, state, ws, forces, finish, *kick->kick.to);
+  }
   if (grid.crushed > 0) {
-    const double crushed_volume = kCrushedVolumeFraction * model.rest_cell_volume();
-    for (int c = 0; c < model.num_cells(); ++c) {
-      ws.cell_crushed[c] = cell_signed_volume(model, state.positions, c) < crushed_volume;
-    }
+    find_crushed_cells(model, state, ws);
     apply_inversion_forces(model, state.positions, ws, forces);
   }
   const int blocks = num_force_blocks(model);

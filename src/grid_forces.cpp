@@ -471,8 +471,8 @@ struct ChunkResults {
 // for that chunk, so that chunks share only the positions and velocities, which every chunk
 // copies in before any reads them. Then each chunk finishes the nodes of its layers, whose
 // forces are complete once its own gathers are: the kick when asked, without waiting to learn
-// whether another chunk found a crushed cell (then grid_spring_forces puts the spring forces
-// back and the caller kicks again after the recovery), else the forces alone.
+// whether another chunk found a crushed cell (then the caller redoes the crushed cells' corners
+// with their recovery, from the spring forces left in the grid), else the forces alone.
 template <typename Barrier>
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick,
                const GridScratch& scratch, int chunk, int chunks, const Barrier& barrier, ChunkResults& results,
@@ -511,7 +511,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
     passes.gather(slab);
   }
   results.crushed[chunk] = crushed;
-  if (kick != nullptr) {  // at once: if a cell turns out crushed, grid_spring_forces undoes it
+  if (kick != nullptr) {  // at once: if a cell turns out crushed, the caller redoes its corners
     const double* force[3] = {a.in(kForce, 0), a.in(kForce + 1, 0), a.in(kForce + 2, 0)};
     results.fastest_sq[chunk] =
         kick_grid_nodes(*kick, grid.point_of_node.data(), force, nodes.begin, nodes.end, forces);
@@ -539,14 +539,15 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   });
   GridForces out;
   out.crushed = results.total_crushed();
-  out.kicked = kick != nullptr && out.crushed == 0;
-  if (kick != nullptr && !out.kicked) {
-    // the chunks kicked without waiting to know (a crushed cell is rare): the caller adds the
-    // recovery and kicks again from the spring forces, which are still in the grid's arrays
-    copy_out(grid, arrays.arrays(0), kForce, Range{0, num_nodes}, forces);
-  }
   for (double fastest_sq : results.fastest_sq) out.fastest_sq = faster(fastest_sq, out.fastest_sq);
   return out;
+}
+
+Eigen::Vector3d grid_spring_force(const GridLayout& grid, const std::vector<double>& scratch, int node) {
+  const std::size_t point = static_cast<std::size_t>(grid.padding + grid.point_of_node[node]);
+  const double* force = scratch.data() + LayerArrays::grid_stride(grid) * kForce + point;
+  const std::size_t axis_stride = LayerArrays::grid_stride(grid);
+  return {force[0], force[axis_stride], force[2 * axis_stride]};
 }
 
 }  // namespace cubespring

@@ -23,19 +23,22 @@ int grid_threads(const GridLayout& grid, int threads);
 /// What grid_spring_forces() did.
 struct GridForces {
   int crushed = 0;         ///< cells with signed volume below kCrushedVolumeFraction of the rest volume
-  bool kicked = false;     ///< the kick was asked and done (no cell crushed)
-  double fastest_sq = 0.0;  ///< when kicked: the largest squared speed [m^2/s^2], NaN if not finite
+  double fastest_sq = 0.0;  ///< with a kick: the largest squared speed [m^2/s^2], NaN if not finite
 };
 
 /// Spring, correction and twist forces [N] on every node into `forces` (3 x num_nodes), with the
 /// springs' and correction's Rayleigh damping when with_rate. No inversion recovery. When `kick`
-/// is given and no cell is crushed, the forces also get the loads and mass damping and the nodes
-/// their kick (grid_kick.h); when cells are crushed, the caller adds their recovery, loads and
-/// kick (kick.to then holds a kick without the recovery, which the caller's overwrites).
-/// `scratch` keeps the grid's arrays between calls; clear it before using it with another
-/// layout (entries the passes never write must stay as first set).
+/// is given, the forces also get the loads and mass damping and every node its kick
+/// (grid_kick.h); when cells are crushed, the caller then redoes the nodes of those cells, whose
+/// spring forces grid_spring_force() gives, with their recovery. `scratch` keeps the grid's
+/// arrays between calls; clear it before using it with another layout (entries the passes never
+/// write must stay as first set).
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                               std::vector<double>& scratch, Eigen::Matrix3Xd& forces,
                               const GridKick* kick = nullptr);
+
+/// The spring, correction and twist force [N] on `node` that the last grid_spring_forces() with
+/// this scratch found.
+Eigen::Vector3d grid_spring_force(const GridLayout& grid, const std::vector<double>& scratch, int node);
 
 }  // namespace cubespring
