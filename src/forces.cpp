@@ -373,7 +373,8 @@ template <typename Finish>
 double redo_crushed_corners(const Model& model, const State& state, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
                             const Finish& finish, const State& kicked) {
   find_crushed_cells(model, state, ws);
-  std::vector<int> corners;
+  std::vector<int>& corners = ws.crushed_corners;
+  corners.clear();
   for (int c = 0; c < model.num_cells(); ++c) {
     if (!ws.cell_crushed[c]) continue;
     corners.insert(corners.end(), model.cell_nodes[c].begin(), model.cell_nodes[c].end());
@@ -386,10 +387,10 @@ double redo_crushed_corners(const Model& model, const State& state, ForceWorkspa
   return fastest_after_kick(kicked);
 }
 
-// The forces of a body on its dense grid (grid_forces.h), then the inversion recovery and
-// finish(n) of every node, the nodes cut into the force blocks. `kick`, when given, is finish's
-// kick, which the grid passes do themselves (then only the crushed cells' corners are redone).
-// Returns what run_passes does.
+// The forces of a body on its dense grid (grid_forces.h). With `kick` (finish's kick), the grid
+// passes kick every node themselves and only the crushed cells' corners are redone; without,
+// the inversion recovery and finish(n) of every node follow, the nodes cut into the force
+// blocks. Returns what run_passes does.
 template <typename Finish>
 double grid_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick) {

@@ -40,6 +40,7 @@ struct ForceWorkspace {
   std::vector<int> block_crushed;         ///< crushed cells found by each block
   std::vector<double> block_fastest;      ///< largest squared speed each block gave a node [m^2/s^2]
   std::vector<double> grid_arrays;        ///< arrays of the grid passes (src/grid_forces.h)
+  std::vector<int> crushed_corners;       ///< nodes of the crushed cells, when the grid passes kicked
   std::shared_ptr<const void> grid_arrays_layout;  ///< the grid layout grid_arrays belong to
   void resize(const Model& model);
 };

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 // Time integration against analytic periods, conservation laws, stability limits and static
 // equilibria.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -252,7 +253,7 @@ TEST(Integrator, SameRunTwiceIsBitIdenticalOnOneAndTwoThreads) {
 
 // The explicit steps of a dense body run on its grid passes; the same steps on the spring lists
 // give the same states to rounding: damped, under gravity, clamped, and with a cell crushed at
-// the start (its recovery is added to the grid's forces before the kick).
+// the start (its corners' kick is redone with its recovery).
 TEST(Integrator, GridAndSpringListsStepAlike) {
   Material m = test::notes_material(0.3);
   m.stiffness_damping = 1e-4;
@@ -323,7 +324,7 @@ void expect_step_is_forces_then_kick(const Model& model, const Constraints& clam
   EXPECT_TRUE(stepped.positions == expected.positions) << what;
 }
 
-// Cell c's top face pushed through its bottom face: the kick then waits for its recovery.
+// Cell c's top face pushed through its bottom face: its corners then get the recovery.
 void crush_cell(const Model& model, int c, State& state) {
   for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[c][corner]) -= 0.015;
 }
@@ -373,8 +374,8 @@ TEST(Integrator, SymplecticStepIsTheForcesThenAKickAndDrift) {
   expect_step_is_forces_then_kick(holed.value(), Constraints(holed.value()), Loads{}, wobbling_block(holed.value()),
                                   0.5 * max_stable_time_step(holed.value()), 1, "holes");
   // a body whose grid passes take 1-3 threads (13125 points, 20 layers of cells), each kicking its
-  // share of the nodes; with a cell crushed in the first or the last thread's layers, every
-  // node's kick is redone after the recovery
+  // share of the nodes; with a cell crushed in the first or the last thread's layers, its
+  // corners' kick is redone with the recovery
   Material damped = test::notes_material(0.3);
   damped.mass_damping = 5.0;
   const Model large = test::box_model({24, 24, 20}, damped);
@@ -390,6 +391,42 @@ TEST(Integrator, SymplecticStepIsTheForcesThenAKickAndDrift) {
       expect_step_is_forces_then_kick(large, Constraints(large), loads, start, dt, threads,
                                       std::to_string(threads) + " threads, crushed cell " +
                                           std::to_string(crushed_cell));
+    }
+  }
+}
+
+// The speed check sees the crushed cells' corners after their recovery: the fastest node of the
+// step (from compute_forces and a kick) is a corner of the crushed cell, and a speed limit just
+// under its speed stops the step while one just over it lets it pass, on the grid (whose kick
+// ran before the recovery was known) as on the lists.
+TEST(Integrator, TheSpeedCheckSeesTheCrushedCellsRecovery) {
+  const Model grid = test::box_model({6, 4, 3}, test::notes_material(0.3));
+  ASSERT_NE(grid.grid_layout, nullptr);
+  Model lists = grid;
+  lists.grid_layout.reset();
+  const int crushed = grid.num_cells() - 1;
+  for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
+    const std::string what = model->grid_layout ? "grid" : "lists";
+    State start = wobbling_block(*model);
+    crush_cell(*model, crushed, start);
+    const double dt = 0.5 * max_stable_time_step(*model);
+    ForceWorkspace workspace;
+    Eigen::Matrix3Xd forces;
+    compute_forces(*model, start, Loads{}, ForceOptions{}, workspace, forces);
+    Eigen::Index fastest = 0;
+    const Eigen::VectorXd speed_sq =
+        (start.velocities + dt * forces * model->mass.cwiseInverse().asDiagonal()).colwise().squaredNorm().transpose();
+    const double fastest_speed = std::sqrt(speed_sq.maxCoeff(&fastest));
+    const auto& corners = model->cell_nodes[crushed];
+    ASSERT_NE(std::find(corners.begin(), corners.end(), static_cast<int>(fastest)), corners.end()) << what;
+    for (const double margin : {1.0 - 1e-9, 1.0 + 1e-9}) {
+      StepSettings settings;
+      settings.time_step = dt;
+      settings.speed_limit = margin * fastest_speed;
+      State state = start;
+      Stepper stepper(*model);
+      const StepReport report = stepper.step(*model, Constraints(*model), Loads{}, settings, state);
+      EXPECT_EQ(report.ok(), margin > 1.0) << what << ", limit " << margin << " x the fastest: " << report.message;
     }
   }
 }
