@@ -37,7 +37,9 @@ enum LayerSlot : int {
   kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
   kEdgeVector = kEdgeOwnTension + kEdgeFamilies,  // x, y, z per edge family (twist only)
   kCellTwist = kEdgeVector + 3 * kEdgeFamilies,   // Q per face normal x, y, z (twist only)
-  kSlots = kCellTwist + 3
+  // per face normal d, the face at g's 0.5 (Q_d of the cell at g - d - Q_d of the cell at g)
+  kFaceTwist = kCellTwist + 3,
+  kSlots = kFaceTwist + 3
 };
 constexpr int kLayerSlots = kSlots - kGridSlots;
 // The passes of layer L read the temporaries of layers L - 1 to L + 1 (run_chunk).

@@ -278,6 +278,20 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
   }
 }
 
+// Pass 3a, twist only: each face's difference of its two cells' twist coefficients, for the
+// faces normal to x, y, z (or the first `normals` of them) at the points of one z-layer; pass 3b
+// reads two of these per face normal instead of four coefficients, for each component.
+CUBESPRING_VECTOR_CLONES void face_twist_pass(const GridLayout& grid, int slab, const LayerArrays& a, int normals) {
+  const int count = layer_points(grid, grid.points.y());
+  for (int d = 0; d < normals; ++d) {
+    const double* __restrict own = a.in(kCellTwist + d, slab);
+    const double* __restrict behind = a.in(kCellTwist + d, slab, -unit(d));
+    double* __restrict difference = a.out(kFaceTwist + d, slab);
+#pragma omp simd
+    for (int g = 0; g < count; ++g) difference[g] = 0.5 * (behind[g] - own[g]);
+  }
+}
+
 // Pass 3b, twist only: the twist forces of the edges of family f on one z-layer, added to their
 // forces. The edge along e at g lies on the faces normal to each other axis d at F = g and
 // F = g - o (o the third axis); the face's mean of its o-edges starts at F and F + e.
@@ -289,15 +303,11 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
   // the two faces' normals d and third axes o: (d1, d2) and (d2, d1)
   const int d1 = (f + 1) % 3, d2 = (f + 2) % 3;
   const Eigen::Vector3i s1 = unit(d1), s2 = unit(d2);
-  const auto q = [&](int d, const Eigen::Vector3i& step) { return a.in(kCellTwist + d, slab, step); };
-  const double* __restrict q1_0 = q(d1, Eigen::Vector3i::Zero());
-  const double* __restrict q1_1 = q(d1, -s1);
-  const double* __restrict q1_2 = q(d1, -s2);
-  const double* __restrict q1_12 = q(d1, -s1 - s2);
-  const double* __restrict q2_0 = q(d2, Eigen::Vector3i::Zero());
-  const double* __restrict q2_1 = q(d2, -s1);
-  const double* __restrict q2_2 = q(d2, -s2);
-  const double* __restrict q2_12 = q(d2, -s1 - s2);
+  // the faces' coefficient differences (face_twist_pass): normal d1 at g and g - s2, d2 at g and g - s1
+  const double* __restrict near1_at = a.in(kFaceTwist + d1, slab);
+  const double* __restrict far1_at = a.in(kFaceTwist + d1, slab, -s2);
+  const double* __restrict near2_at = a.in(kFaceTwist + d2, slab);
+  const double* __restrict far2_at = a.in(kFaceTwist + d2, slab, -s1);
   // the faces' o-edge vectors' x (y and z follow in the ring): o = d2 for the faces normal to d1
   const double* m1_x[4] = {a.in(kEdgeVector + 3 * d2, slab), a.in(kEdgeVector + 3 * d2, slab, e),
                            a.in(kEdgeVector + 3 * d2, slab, -s2), a.in(kEdgeVector + 3 * d2, slab, e - s2)};
@@ -318,8 +328,7 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
 #pragma omp simd
     for (int g = 0; g < count; ++g) {
       // normal d1: faces at g and g - s2; normal d2: faces at g and g - s1
-      const double near1 = 0.5 * (q1_1[g] - q1_0[g]), far1 = 0.5 * (q1_12[g] - q1_2[g]);
-      const double near2 = 0.5 * (q2_2[g] - q2_0[g]), far2 = 0.5 * (q2_12[g] - q2_1[g]);
+      const double near1 = near1_at[g], far1 = far1_at[g], near2 = near2_at[g], far2 = far2_at[g];
       out[g] += (near1 * (m1_0[g] + m1_e[g]) + far1 * (m1_2[g] + m1_2e[g])) +
                 (near2 * (m2_0[g] + m2_e[g]) + far2 * (m2_1[g] + m2_1e[g]));
     }
@@ -392,6 +401,9 @@ struct LayerPasses {
   // only); the twist also measure(slab - 1) (x- and y-edges) or measure(slab + 1) (z-edges)
   void edge_tensions(int slab, int first_family = 0) const {
     if (slab < 0) return;
+    // the z-edges' twist reads the faces normal to x and y only (their Q_z would need the cells of
+    // the layer below)
+    if (grid.has_twist) face_twist_pass(grid, slab, a, first_family == kZEdges ? 2 : 3);
     for (int f = first_family; f < kEdgeFamilies; ++f) {
       edge_tension_pass(grid, f, slab, a);
       if (grid.has_twist) twist_edge_pass(grid, f, slab, a);
