@@ -37,7 +37,8 @@ enum LayerSlot : int {
   kEdgeOwnTension = kEdgeRate + kEdgeFamilies,
   kEdgeVector = kEdgeOwnTension + kEdgeFamilies,  // x, y, z per edge family (twist only)
   kCellTwist = kEdgeVector + 3 * kEdgeFamilies,   // Q per face normal x, y, z (twist only)
-  // per face normal d, the face at g's 0.5 (Q_d of the cell at g - d - Q_d of the cell at g)
+  // per face normal d, the face at g: 0.5 (Q_d of the cell at g - unit(d), minus Q_d of the
+  // cell at g) (twist only)
   kFaceTwist = kCellTwist + 3,
   kSlots = kFaceTwist + 3
 };

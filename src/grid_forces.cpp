@@ -9,7 +9,8 @@
 //      section 3); signed volume of the mean edge vectors -> crushed cells (section 5);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
 //   the exact-bending twist, by faces (below), when the body has it: its cells' coefficients in
-//      pass 2 (from the corner positions the crushed test reads), its edge forces in pass 3b;
+//      pass 2 (from the corner positions the crushed test reads), each face's difference of
+//      its two cells' coefficients in pass 3a, its edge forces in pass 3b;
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads share
 //      nothing and the sums do not depend on the thread count).
