@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -27,6 +28,7 @@
 
 #include "bench_support.h"
 #include "commands.h"
+#include "step_timing.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/shapes.h"
 #include "cubespring/voxelize.h"
@@ -55,26 +57,6 @@ struct BenchVoxelizeOptions {
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Mean time per call [s]. A call that alone takes min_seconds or more is timed once: the
-// million-triangle cases take about that long, and a warm-up would double the run. Shorter
-// calls get that first call as a warm-up, then repeat until min_seconds have passed.
-template <typename Fn>
-double time_per_call(double min_seconds, Fn&& fn) {
-  const auto first_start = Clock::now();
-  fn();
-  const double first = seconds_since(first_start);
-  if (first >= min_seconds) return first;
-  int calls = 0;
-  const auto start = Clock::now();
-  double elapsed = 0.0;
-  do {
-    fn();
-    ++calls;
-    elapsed = seconds_since(start);
-  } while (elapsed < min_seconds);
-  return elapsed / calls;
 }
 
 struct TorusSize {
@@ -219,14 +201,19 @@ void check_options(const BenchVoxelizeOptions& o) {
 
 // Rows for one file: assimp alone, load_mesh, then voxelize at each cells-across.
 std::vector<Row> bench_file(const std::string& path, int triangles, const BenchVoxelizeOptions& o) {
-  const double assimp_read = time_per_call(o.min_seconds, [&] {
+  // a call that alone takes min_seconds or more is timed once: the million-triangle cases take
+  // about that long, and a warm-up would double the run
+  const auto time_per_call = [&](const std::function<void()>& fn) {
+    return app::time_per_call(o.min_seconds, fn, FirstCall::kTimedIfLong);
+  };
+  const double assimp_read = time_per_call([&] {
     // a new importer per call, as load_mesh makes one per call
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(path, kLoadMeshSteps);
     if (scene == nullptr) throw std::runtime_error(path + ": assimp cannot read it: " + importer.GetErrorString());
   });
   TriangleMesh mesh;
-  const double load = time_per_call(o.min_seconds, [&] {
+  const double load = time_per_call([&] {
     Result<TriangleMesh> loaded = load_mesh(path);
     if (!loaded) throw std::runtime_error(loaded.message());
     mesh = std::move(loaded).value();
@@ -244,7 +231,7 @@ std::vector<Row> bench_file(const std::string& path, int triangles, const BenchV
     row.load = load;
     VoxelizeOptions voxelize_options;
     voxelize_options.cells_across = across;
-    row.voxelize = time_per_call(o.min_seconds, [&] {
+    row.voxelize = time_per_call([&] {
       Result<Voxelization> voxels = voxelize(mesh, voxelize_options);
       if (!voxels) throw std::runtime_error(path + " at " + std::to_string(across) + " cells across: " + voxels.message());
       row.cells = static_cast<long>(voxels->cells.size());

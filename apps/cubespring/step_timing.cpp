@@ -10,9 +10,12 @@
 
 namespace cubespring::app {
 
-double time_per_call(double min_seconds, const std::function<void()>& fn) {
+double time_per_call(double min_seconds, const std::function<void()>& fn, FirstCall first) {
   using Clock = std::chrono::steady_clock;
-  fn();  // warm-up: caches, first-touch allocations
+  const auto first_start = Clock::now();
+  fn();
+  const double first_seconds = std::chrono::duration<double>(Clock::now() - first_start).count();
+  if (first == FirstCall::kTimedIfLong && first_seconds >= min_seconds) return first_seconds;
   int calls = 0;
   const auto start = Clock::now();
   double elapsed = 0.0;

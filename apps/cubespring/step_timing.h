@@ -13,8 +13,14 @@
 
 namespace cubespring::app {
 
-/// Calls fn() once to warm up, then repeatedly for at least min_seconds; the mean time per call [s].
-double time_per_call(double min_seconds, const std::function<void()>& fn);
+/// What time_per_call() does with its first call.
+enum class FirstCall {
+  kWarmUp,       ///< not timed: it fills caches and first-touch allocations
+  kTimedIfLong,  ///< timed, and alone when it takes min_seconds or more (a warm-up would double a long run)
+};
+
+/// The mean time per call [s] of fn(), called repeatedly for at least min_seconds after its first.
+double time_per_call(double min_seconds, const std::function<void()>& fn, FirstCall first = FirstCall::kWarmUp);
 
 /// Batches of the compared measurements, taken in turn (a, b, c, a, b, c, ...): a burst of load on
 /// this shared machine then slows one batch of each rather than one whole column.
