@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "cubespring/constraints.h"
 #include "cubespring/forces.h"
 
 namespace cubespring {
@@ -19,17 +20,21 @@ inline constexpr double kDegenerateLengthFraction = 1e-12;
 void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorkspace& ws);
 
 /// One kick-drift of every node, v' = v + kick M^-1 f, x' = x + drift v', from `from` into `to`
-/// (a different State): kick and drift [s].
+/// (a different State): kick and drift [s]. The nodes that `driven` (constraints of this model)
+/// drives then reach their target instead, over `drift` (drive_nodes.h).
 struct KickDrift {
   double kick = 0.0;
   double drift = 0.0;
   const State* from = nullptr;
   State* to = nullptr;
+  const Constraints* driven = nullptr;
 };
 
 /// compute_forces() followed by the kick-drift, each node moved as soon as its force is complete
-/// (while it is still in cache). Returns the largest squared speed [m^2/s^2], NaN or infinity if
-/// a velocity or a new position is not finite. The states and forces are the same as from compute_forces() and a separate sweep.
+/// (while it is still in cache). Returns the largest squared speed [m^2/s^2] of the kick
+/// (driven nodes' before they are driven), NaN or infinity if a velocity or a new position of
+/// the kick or a driven velocity is not finite. The states and forces are the same as from
+/// compute_forces() and separate sweeps.
 double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads,
                                const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces,
                                const KickDrift& kick);

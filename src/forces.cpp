@@ -20,9 +20,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "cell_geometry.h"
+#include "drive_nodes.h"
 #include "force_blocks.h"
 #include "force_passes.h"
 #include "grid_forces.h"
@@ -354,13 +356,20 @@ void find_crushed_cells(const Model& model, const State& state, ForceWorkspace& 
   }
 }
 
-// What finish(n) of every node would return, from the state a kick made: the largest squared
-// speed, NaN if a position is not finite.
-double fastest_after_kick(const State& kicked) {
+// What finish(n) of compute_forces_and_kick returned for every node, from the forces its kick
+// used (a driven node's kicked velocity is gone from `to`): the largest squared speed, NaN if a
+// kicked position or a driven velocity is not finite.
+double fastest_after_kick(const Model& model, const Eigen::Matrix3Xd& forces, const KickDrift& kick) {
+  const State& from = *kick.from;
+  const std::uint8_t* driven = kick.driven != nullptr ? kick.driven->driven_flags() : nullptr;
   double fastest_sq = 0.0;
-  for (Eigen::Index n = 0; n < kicked.positions.cols(); ++n) {
-    const double speed_sq = kicked.positions.col(n).allFinite() ? kicked.velocities.col(n).squaredNorm()
-                                                                : std::numeric_limits<double>::quiet_NaN();
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
+    const Eigen::Vector3d x = from.positions.col(n) + kick.drift * v;
+    double speed_sq = x.allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+    if (driven != nullptr && driven[n] != 0 && !kick.to->velocities.col(n).allFinite()) {
+      speed_sq = std::numeric_limits<double>::quiet_NaN();
+    }
     fastest_sq = faster(speed_sq, fastest_sq);
   }
   return fastest_sq;
@@ -371,7 +380,7 @@ double fastest_after_kick(const State& kicked) {
 // kick is the one finish would give (its force has no recovery term).
 template <typename Finish>
 double redo_crushed_corners(const Model& model, const State& state, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
-                            const Finish& finish, const State& kicked) {
+                            const Finish& finish, const KickDrift& kick) {
   find_crushed_cells(model, state, ws);
   std::vector<int>& corners = ws.crushed_corners;
   corners.clear();
@@ -384,7 +393,7 @@ double redo_crushed_corners(const Model& model, const State& state, ForceWorkspa
   for (int n : corners) forces.col(n) = grid_spring_force(*model.grid_layout, ws.grid_arrays, n);
   apply_inversion_forces(model, state.positions, ws, forces);
   for (int n : corners) (void)finish(n);
-  return fastest_after_kick(kicked);
+  return fastest_after_kick(model, forces, kick);
 }
 
 // The forces of a body on its dense grid (grid_forces.h). With `kick` (finish's kick), the grid
@@ -404,7 +413,7 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
       grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces, kick);
   if (kick != nullptr) {
     if (grid.crushed == 0) return grid.fastest_sq;
-    return redo_crushed_corners(model, state, ws, forces, finish, *kick->kick.to);
+    return redo_crushed_corners(model, state, ws, forces, finish, kick->kick);
   }
   if (grid.crushed > 0) {
     find_crushed_cells(model, state, ws);
@@ -483,7 +492,12 @@ double compute_forces_and_kick(const Model& model, const State& state, const Loa
         const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
         to.velocities.col(n) = v;
         to.positions.col(n) = from.positions.col(n) + kick.drift * v;
-        return to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+        double speed_sq =
+            to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+        if (kick.driven != nullptr && !drive_node(*kick.driven, kick.drift, from, to, n)) {
+          speed_sq = std::numeric_limits<double>::quiet_NaN();
+        }
+        return speed_sq;
       },
       &grid_kick);
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "drive_nodes.h"
 #include "grid_layout.h"
 #include "vector_clones.h"
 
@@ -64,11 +65,9 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
   return std::isnan(poison) ? std::numeric_limits<double>::quiet_NaN() : fastest_sq;
 }
 
-}  // namespace
-
-double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
-                       int begin, int end, Eigen::Matrix3Xd& forces) {
-  assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
+// The sweep for this body's kind of nodes and loads.
+double kick_nodes_of_kind(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
+                          int begin, int end, Eigen::Matrix3Xd& forces) {
   const bool nodal = kick.loads.nodal_forces.cols() == kick.model.num_nodes();
   double* out = forces.data();
   if (on_consecutive_points(point_of_node, begin, end)) {
@@ -85,6 +84,19 @@ double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const dou
   }
   return nodal ? kick_nodes<false, true, false>(kick, point_of_node, spring_force, begin, end, out)
                : kick_nodes<false, false, false>(kick, point_of_node, spring_force, begin, end, out);
+}
+
+}  // namespace
+
+double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
+                       int begin, int end, Eigen::Matrix3Xd& forces) {
+  assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
+  const double fastest_sq = kick_nodes_of_kind(kick, point_of_node, spring_force, begin, end, forces);
+  const KickDrift& k = kick.kick;
+  if (k.driven != nullptr && !drive_nodes(*k.driven, k.drift, *k.from, *k.to, begin, end)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return fastest_sq;
 }
 
 }  // namespace cubespring

@@ -27,9 +27,10 @@ struct GridKick {
 /// Nodes [begin, end), whose spring forces [N] are at spring_force[axis][point_of_node[n]]: each
 /// force gets its mass damping, gravity and nodal load, in the order and with the bits of the
 /// spring lists' finish (forces.cpp, NodeLoads), into `forces`; then v' = v0 + (kick / m) f and
-/// x' = x0 + drift v' into kick.to. Returns the largest squared speed [m^2/s^2], NaN if a speed
-/// or a new position is not finite (an omp simd reduction: a max, and a sum of (a - a) that is
-/// +0 or NaN in any order).
+/// x' = x0 + drift v' into kick.to; then the driven nodes among them are driven (KickDrift).
+/// Returns the kick's largest squared speed [m^2/s^2], NaN if a speed or a new position of the
+/// kick (an omp simd reduction: a max, and a sum of (a - a) that is +0 or NaN in any order) or a
+/// driven velocity is not finite.
 double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
                        int begin, int end, Eigen::Matrix3Xd& forces);
 

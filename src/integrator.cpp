@@ -11,37 +11,10 @@
 
 #include <Eigen/IterativeLinearSolvers>
 
+#include "drive_nodes.h"
 #include "force_passes.h"
 
 namespace cubespring {
-namespace {
-
-// Driven nodes reach their target at the end of the step with the velocity that gets them there.
-// Returns false if one of those velocities is not finite (a far target in a tiny step).
-bool drive_nodes(const Constraints& constraints, double dt, const State& start, State& end) {
-  bool finite = true;
-  const std::uint8_t* driven = constraints.driven_flags();
-  const int num_nodes = constraints.num_nodes();
-  constexpr int kWord = sizeof(std::uint64_t);
-  for (int first = 0; first < num_nodes; first += kWord) {
-    const int last = std::min(first + kWord, num_nodes);
-    if (last - first == kWord) {  // most nodes are free: skip them a word of flags at a time
-      std::uint64_t word;
-      std::memcpy(&word, driven + first, sizeof word);
-      if (word == 0) continue;
-    }
-    for (int n = first; n < last; ++n) {
-      if (driven[n] == 0) continue;
-      end.positions.col(n) = constraints.target(n);
-      end.velocities.col(n) = (constraints.target(n) - start.positions.col(n)) / dt;
-      finite = finite && end.velocities.col(n).allFinite();
-    }
-  }
-  return finite;
-}
-
-
-}  // namespace
 
 const char* integrator_name(Integrator integrator) {
   switch (integrator) {
@@ -126,19 +99,28 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
   if (candidate_.positions.cols() != model.num_nodes()) candidate_ = state;
   double fastest_sq = 0.0;
   if (settings.integrator == Integrator::kSymplecticEuler) {
-    // v += dt M^-1 f(x, v); x += dt v
-    fastest_sq = compute_forces_and_kick(model, state, loads, options, workspace_, forces_,
-                                         KickDrift{dt, dt, &state, &candidate_});
+    // v += dt M^-1 f(x, v); x += dt v. The kick drives the driven nodes itself, each thread its
+    // own: a serial sweep here would move their cache lines to this thread every step
+    KickDrift kick{dt, dt, &state, &candidate_};
+    const bool kick_drives = constraints.num_nodes() == model.num_nodes();
+    if (kick_drives) kick.driven = &constraints;
+    fastest_sq = compute_forces_and_kick(model, state, loads, options, workspace_, forces_, kick);
+    if (!kick_drives && !drive_nodes(constraints, dt, state, candidate_, 0, constraints.num_nodes())) {
+      fastest_sq = std::numeric_limits<double>::quiet_NaN();
+    }
   } else {
     // half kick and drift, then a half kick with the force at the new positions (its damping
     // taken at the half-step velocity)
+    const int driven_range = constraints.num_nodes();
     (void)compute_forces_and_kick(model, state, loads, options, workspace_, forces_,
                                   KickDrift{0.5 * dt, dt, &state, &candidate_});
-    (void)drive_nodes(constraints, dt, state, candidate_);  // checked by the second drive
+    (void)drive_nodes(constraints, dt, state, candidate_, 0, driven_range);  // checked by the second drive
     compute_forces(model, candidate_, loads, options, workspace_, forces_);
     fastest_sq = kick_drift(model, forces_, 0.5 * dt, 0.0, candidate_, candidate_);
+    if (!drive_nodes(constraints, dt, state, candidate_, 0, driven_range)) {
+      fastest_sq = std::numeric_limits<double>::quiet_NaN();
+    }
   }
-  if (!drive_nodes(constraints, dt, state, candidate_)) fastest_sq = std::numeric_limits<double>::quiet_NaN();
   candidate_.time = state.time + dt;
   // the symplectic kick checked the positions it made (driven nodes' targets are finite); a
   // serial sweep here would also pull every position into this thread's cache
@@ -227,7 +209,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   candidate_ = state;
   candidate_.velocities = Eigen::Map<const Eigen::Matrix3Xd>(velocity.data(), 3, num_nodes);
   candidate_.positions += dt * candidate_.velocities;
-  (void)drive_nodes(constraints, dt, state, candidate_);  // the check below sees every velocity
+  (void)drive_nodes(constraints, dt, state, candidate_, 0, constraints.num_nodes());  // the check below sees every velocity
   candidate_.time = state.time + dt;
   StepReport checked = check(model, settings, std::sqrt(candidate_.velocities.colwise().squaredNorm().maxCoeff()), candidate_);
   if (!checked.ok()) return checked;
