@@ -371,7 +371,8 @@ struct LayerPasses {
   const LayerArrays& a;
   bool with_rate;
 
-  // the first `families` families (the edges, or all); needs the positions of slab and slab + 1
+  // the first `families` families (the x- and y-edges, or all); needs the positions of slab and
+  // slab + 1
   void measure(int slab, int families = kSpringFamilies) const {
     if (slab < 0 || slab >= grid.points.z()) return;
     for (int f = 0; f < families; ++f) {
@@ -518,7 +519,9 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   passes.edge_tensions(first - 1, kZEdges);
   int crushed = 0;
   for (int slab = first; slab < layers.end; ++slab) {
-    passes.measure(slab + 1);
+    // of the next chunk's first layer, only the x- and y-edges, whose lengths the cells of this
+    // chunk's last layer read: its z-edges and diagonals end in no point of this chunk
+    passes.measure(slab + 1, slab + 1 == layers.end ? kZEdges : kSpringFamilies);
     crushed += passes.cells(slab);
     passes.edge_tensions(slab);
     passes.gather(slab);
