@@ -56,6 +56,7 @@ struct Row {
   std::string name;
   int cells = 0, nodes = 0, springs = 0;
   double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
+  double two_bodies = 0;  // two copies of the body's 1-thread symplectic step at once, on 2 threads
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
   int implicit_iterations = 0;
 };
@@ -90,9 +91,12 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2);
   ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1);
   ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1);
+  ExplicitStepper first_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1);
+  ExplicitStepper second_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1);
+  const TwoAtOnce two_bodies(std::ref(first_body), std::ref(second_body));
   std::vector<std::function<void()>> columns{[&] { bare_spring_pass(model, start.positions, forces); },
                                              std::ref(symplectic1), std::ref(symplectic2), std::ref(verlet1),
-                                             std::ref(exact1)};
+                                             std::ref(exact1), std::ref(two_bodies)};
   std::unique_ptr<GridSpringFloor> floor;
   if (box != nullptr) {
     const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
@@ -107,12 +111,13 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   row.symplectic2 = times[2];
   row.verlet1 = times[3];
   row.exact_bending1 = times[4];
+  row.two_bodies = times[5];
   if (floor) {
     if (floor->springs() != model.num_springs() || !std::isfinite(floor->checksum())) {
       throw std::runtime_error("the grid floor of " + name + " visited " + std::to_string(floor->springs()) +
                                " springs, the model has " + std::to_string(model.num_springs()));
     }
-    row.grid_bare = times[5];
+    row.grid_bare = times[6];
   }
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
@@ -159,6 +164,8 @@ int run_bench(const BenchOptions& o) {
                      {"bare_spring_pass_ms", 1e3 * r.bare},
                      {"grid_bare_spring_pass_ms", r.grid_bare > 0 ? nlohmann::json(1e3 * r.grid_bare) : nlohmann::json()},
                      {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
+                     {"two_bodies_at_once_ms", 1e3 * r.two_bodies},
+                     {"two_thread_ceiling", 2.0 * r.symplectic1 / r.two_bodies},
                      {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}}},
                      {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
                      {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
@@ -171,9 +178,9 @@ int run_bench(const BenchOptions& o) {
   std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"
               ">= %.2f s each; implicit: mean over >= %.1f s)\n",
               kBatches, o.min_seconds / kBatches, o.min_seconds);
-  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %9s %9s | %9s %9s %9s %9s %7s | %10s %5s %10s\n", "body", "cells",
-              "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "full/bare", "full/grid", "Gspring/s",
-              "grid G/s", "verlet 1t", "exact 1t", "exact/pap", "implicit", "CG it", "s/sim s");
+  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %7s | %10s %5s %10s\n", "body",
+              "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling", "full/bare",
+              "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "exact 1t", "exact/pap", "implicit", "CG it", "s/sim s");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -181,9 +188,10 @@ int run_bench(const BenchOptions& o) {
       std::snprintf(over_grid, sizeof over_grid, "%.2f", r.symplectic1 / r.grid_bare);
       std::snprintf(grid_rate, sizeof grid_rate, "%.3f", 1e-9 * r.springs / r.grid_bare);
     }
-    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %7.2f |", r.name.c_str(),
-                r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2,
-                r.symplectic1 / r.symplectic2, r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate,
+    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %7.2f |",
+                r.name.c_str(), r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1,
+                1e3 * r.symplectic2, r.symplectic1 / r.symplectic2, 2.0 * r.symplectic1 / r.two_bodies,
+                r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate,
                 1e3 * r.verlet1, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1);
     if (r.implicit_step > 0) {
       std::printf(" %10.3f %5d %10.2f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3);
@@ -193,7 +201,10 @@ int run_bench(const BenchOptions& o) {
   }
   std::printf("bare: one linear spring-force pass over the spring lists; grid bare: the same with implicit lattice\n"
               "connectivity (boxes only: springs at fixed index offsets, plain loops), the issue's floor; symp: full\n"
-              "symplectic Euler step (springs, correction, inversion check, damping, integration); full/bare, full/grid:\n"
+              "symplectic Euler step (springs, correction, inversion check, damping, integration); 2t gain: symp 1t over\n"
+              "symp 2t; ceiling: what two cores give two copies of the body stepped at once on one thread each (2 x\n"
+              "symp 1t over their time): the gain a 2-thread split would have with no cost of its own (a split can beat\n"
+              "it a little, as each half's arrays fit the caches better); full/bare, full/grid:\n"
               "1-thread step over each floor; Gspring/s, grid G/s: springs per second of each floor;\n"
               "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
               "implicit: dt = 1 ms, CG to 1e-6; s/sim s: wall seconds per simulated second.\n");

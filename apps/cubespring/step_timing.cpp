@@ -6,6 +6,10 @@
 #include <chrono>
 #include <limits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "cubespring/stable_time_step.h"
 
 namespace cubespring::app {
@@ -43,6 +47,22 @@ ExplicitStepper::ExplicitStepper(const Model& model, const Constraints& constrai
   settings_.integrator = integrator;
   settings_.threads = threads;
   settings_.time_step = 0.5 * max_stable_time_step(model);
+}
+
+void TwoAtOnce::operator()() const {
+#ifdef _OPENMP
+#pragma omp parallel num_threads(2)
+  {
+    if (omp_get_thread_num() == 0) {
+      first_();
+    } else {
+      second_();
+    }
+  }
+#else
+  first_();
+  second_();
+#endif
 }
 
 void ExplicitStepper::operator()() { (void)stepper_.step(model_, constraints_, loads_, settings_, state_); }

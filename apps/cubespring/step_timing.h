@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "cubespring/constraints.h"
@@ -45,6 +46,20 @@ class ExplicitStepper {
   StepSettings settings_;
   State state_;
   Stepper stepper_;
+};
+
+/// Two functions run at once on two threads per call (one after the other without OpenMP), for
+/// what two cores of this machine give two independent jobs: their shared caches, memory and
+/// clock make it less than twice one core. A 2-thread split of one job gains about as much when
+/// the split costs nothing (a little more when each half's arrays fit the caches better).
+class TwoAtOnce {
+ public:
+  TwoAtOnce(std::function<void()> first, std::function<void()> second)
+      : first_(std::move(first)), second_(std::move(second)) {}
+  void operator()() const;
+
+ private:
+  std::function<void()> first_, second_;
 };
 
 }  // namespace cubespring::app

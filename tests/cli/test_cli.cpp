@@ -158,8 +158,9 @@ TEST(Cli, VoxelizeTableNamesTheParts) {
 }
 
 // A short core bench run: one row per body with the documented JSON keys, the bodies' sizes counted
-// by hand (a 2x2x2 box: 27 nodes, 54 edges + 32 inner diagonals), every timed column a positive time;
-// the floor with implicit connectivity for boxes only (it must visit the model's spring count).
+// by hand (a 2x2x2 box: 27 nodes, 54 edges + 32 inner diagonals), every timed column a positive time
+// (the 2-thread ceiling from the 1-thread step and two bodies at once); the floor with implicit
+// connectivity for boxes only (it must visit the model's spring count).
 TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
   const nlohmann::json rows = run_json("bench --sizes '2,2,2;3,1,1' --sphere 4 --min-seconds 0.01 --implicit-max-cells 100 --json");
   ASSERT_TRUE(rows.is_array());
@@ -179,6 +180,11 @@ TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
     EXPECT_GT(row["symplectic_euler_ms"]["2"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["velocity_verlet_ms"]["1"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["exact_bending_symplectic_euler_ms"]["1"].get<double>(), 0.0) << row.dump();
+    const double two_bodies = row["two_bodies_at_once_ms"].get<double>();
+    EXPECT_GT(two_bodies, 0.0) << row.dump();
+    EXPECT_NEAR(row["two_thread_ceiling"].get<double>(), 2.0 * row["symplectic_euler_ms"]["1"].get<double>() / two_bodies,
+                1e-12)
+        << row.dump();
     EXPECT_GT(row["implicit_euler_ms"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["implicit_cg_iterations"].get<int>(), 0) << row.dump();
   }
