@@ -325,15 +325,19 @@ TEST(Forces, GridPassesTakeAChangedDiagonalOrCell) {
 // first in its own ring of layers. Any thread count gives the same bits, and the lists' forces
 // to rounding: a plate of 3 layers of cells (16384 points: with 3 or 4 threads, chunks of 2
 // layers, 1 layer, and the top layer of points alone, which recompute the layers below theirs),
-// in the exact-bending model, and a box of 14 layers (9375 points: 2, 3 and 4 chunks), each
-// with a crushed cell.
+// in the exact-bending model, and a box of 14 layers (9375 points: 2, 3 and 4 chunks) in both
+// models, each with a crushed cell.
 TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
   LatticeDesc plate = box_lattice({63, 63, 3}, Eigen::Vector3d::Constant(0.01), damped);
   plate.model = CellModel::kExactBending;
+  LatticeDesc exact_box = box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped);
+  exact_box.model = CellModel::kExactBending;
   const std::vector<std::pair<const char*, LatticeDesc>> bodies{
-      {"exact-bending plate", plate}, {"box", box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped)}};
+      {"exact-bending plate", plate},
+      {"box", box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped)},
+      {"exact-bending box", exact_box}};
   for (const auto& [name, desc] : bodies) {
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
