@@ -17,6 +17,7 @@
 #include "bench_support.h"
 #include "commands.h"
 #include "grid_spring_floor.h"
+#include "number_checks.h"
 #include "step_timing.h"
 #include "cubespring/constraints.h"
 #include "cubespring/integrator.h"
@@ -219,7 +220,9 @@ Command add_bench_command(CLI::App& app) {
   cmd->add_option("--sizes", options->sizes, "blocks as NX,NY,NZ separated by ';'")->capture_default_str();
   cmd->add_option("--sphere", options->sphere_cells_across, "cells across the voxelized sphere (0: none)")->capture_default_str();
   cmd->add_option("--min-seconds", options->min_seconds,
-                  "time each measurement at least this long [s], in 5 interleaved batches for the explicit columns")->capture_default_str();
+                  "time each measurement at least this long [s], in 5 interleaved batches for the explicit columns")
+      ->check(finite_positive_number())
+      ->capture_default_str();
   cmd->add_option("--implicit-max-cells", options->implicit_max_cells, "time implicit steps up to this many cells")->capture_default_str();
   cmd->add_flag("--json", options->json, "print a JSON array instead of the table");
   return [options] { return run_bench(*options); };

@@ -16,6 +16,7 @@
 
 #include "bench_support.h"
 #include "commands.h"
+#include "number_checks.h"
 #include "step_timing.h"
 #include "cubespring/model.h"
 
@@ -179,7 +180,7 @@ Command add_bench_layout_command(CLI::App& app) {
   cmd->add_option("--fills", options->fills, "fractions of their box the balls fill, separated by ','")
       ->capture_default_str();
   cmd->add_option("--min-seconds", options->min_seconds, "time each measurement at least this long [s]")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive_number())
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print a JSON array instead of the table");
   return [options] { return run_bench_layout(*options); };

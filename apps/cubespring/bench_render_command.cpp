@@ -20,6 +20,7 @@
 #include "bench_support.h"
 #include "commands.h"
 #include "default_scene.h"
+#include "number_checks.h"
 #include "scene_frames.h"
 #include "scene_run.h"
 
@@ -191,7 +192,7 @@ Command add_bench_render_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seconds", options->seconds, "simulated time for the physics figure [s] (default: the scene's "
                                                   "whole story, after it settles)")
-      ->check(CLI::PositiveNumber);
+      ->check(finite_positive_number());
   cmd->add_option("--sizes", options->sizes, "picture sizes WIDTHxHEIGHT;...")->capture_default_str();
   cmd->add_flag("--json", options->json, "print one JSON object instead of the table");
   return [options] { return run(*options); };

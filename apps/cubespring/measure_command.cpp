@@ -14,6 +14,7 @@
 #include "cubespring/fem_comparison.h"
 #ifdef CUBESPRING_HAS_RENDER
 #include "cantilever_picture.h"
+#include "number_checks.h"
 #endif
 
 namespace cubespring::app {
@@ -285,7 +286,7 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--width", options->width, "--png: image width [pixels]")->check(CLI::Range(16, 4096))->capture_default_str();
   cmd->add_option("--height", options->height, "--png: image height [pixels]")->check(CLI::Range(16, 4096))->capture_default_str();
   cmd->add_option("--magnify", options->magnify, "--png: draw displacements this many times their size (colours stay true)")
-      ->check(CLI::PositiveNumber)
+      ->check(finite_positive_number())
       ->capture_default_str();
   return [options] { return run_measure(*options); };
 }

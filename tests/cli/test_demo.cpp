@@ -554,6 +554,9 @@ TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   const ToolRun bad = run_tool("bench-render --sizes 640x10");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.out.find("--sizes: '640x10' is not WIDTHxHEIGHT"), std::string::npos) << bad.out;
+  const ToolRun endless = run_tool("bench-render --seconds nan");
+  EXPECT_NE(endless.exit_code, 0);
+  EXPECT_NE(endless.out.find("--seconds: 'nan' is not a finite number > 0"), std::string::npos) << endless.out;
 }
 
 TEST(DemoCli, HelpAndVersionStillAnswer) {

@@ -1,0 +1,13 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Checks of number flags that CLI11's own let through.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace cubespring::app {
+
+/// A finite number > 0. (CLI11's PositiveNumber lets "nan" and "inf" through: neither is <= 0.)
+CLI::Validator finite_positive_number();
+
+}  // namespace cubespring::app
