@@ -406,11 +406,13 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
   prepare(model, ws, forces);
   if (ws.grid_arrays_layout != model.grid_layout) {  // another body's arrays: start afresh
     ws.grid_arrays.clear();
+    ws.grid_split = GridSplit{};
     ws.grid_arrays_layout = model.grid_layout;
   }
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const GridForces grid =
-      grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, forces, kick);
+      grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, ws.grid_split, forces,
+                         kick);
   if (kick != nullptr) {
     if (grid.crushed == 0) return grid.fastest_sq;
     return redo_crushed_corners(model, state, ws, forces, finish, kick->kick);

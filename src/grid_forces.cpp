@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -466,11 +467,12 @@ void copy_out(const GridLayout& grid, const LayerArrays& a, int slot, const Rang
 // allocates nothing).
 constexpr int kMaxGridThreads = 64;
 
-// What the chunks share besides the arrays: their crushed cells, and their nodes' fastest
-// squared speed when they kick.
+// What the chunks share besides the arrays: their crushed cells, their nodes' fastest squared
+// speed when they kick, and the time each took for its own work (not waiting) [s].
 struct ChunkResults {
   std::array<int, kMaxGridThreads> crushed{};
   std::array<double, kMaxGridThreads> fastest_sq{};
+  std::array<double, kMaxGridThreads> seconds{};
   int total_crushed() const {
     int total = 0;
     for (int c : crushed) total += c;
@@ -478,35 +480,29 @@ struct ChunkResults {
   }
 };
 
-// Chunk `chunk` of `chunks` of the work; barrier() waits for every chunk. Each chunk takes a
-// share of the z-layers and runs the passes layer after layer in its own ring of temporaries.
-// Its first gather needs the spring forces of the layer below, another chunk's: the chunk
+// Chunk `chunk` of the work, the z-layers `layers`; barrier() waits for every chunk. Each chunk
+// runs the passes layer after layer in its own ring of temporaries. Its first gather needs the spring forces of the layer below, another chunk's: the chunk
 // recomputes them (the springs and cells of that layer, its z-edges' tensions) rather than wait
 // for that chunk, so that chunks share only the positions and velocities, which every chunk
 // copies in before any reads them. Then each chunk finishes the nodes of its layers, whose
 // forces are complete once its own gathers are: the kick when asked, without waiting to learn
 // whether another chunk found a crushed cell (then the caller redoes the crushed cells' corners
-// with their recovery, from the spring forces left in the grid), else the forces alone.
+// with their recovery, from the spring forces left in the grid), else the forces alone. When
+// timed, the chunk's time for its own work, not waiting, goes to results.seconds.
 template <typename Barrier>
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick,
-               const GridScratch& scratch, int chunk, int chunks, const Barrier& barrier, ChunkResults& results,
-               Eigen::Matrix3Xd& forces) {
-  // chunks of equal work: a chunk after the first recomputes about a layer below its own
-  // (below), so it takes a layer of cells fewer: the layers are split as if there were
-  // chunks - 1 more, each chunk but the first then gives one back. Every chunk keeps a layer at
-  // least (cell_slabs >= chunks); the last, which also has the top layer of points, may have
-  // only that.
-  const auto boundary = [&](int k) {
-    if (k == 0) return 0;
-    if (k == chunks) return grid.points.z();
-    return ((grid.cell_slabs + chunks - 1) * k + chunks - 1) / chunks - (k - 1);
-  };
-  const Range layers{boundary(chunk), boundary(chunk + 1)};
+               const GridScratch& scratch, const Range& layers, int chunk, bool timed, const Barrier& barrier,
+               ChunkResults& results, Eigen::Matrix3Xd& forces) {
+  using Clock = std::chrono::steady_clock;
+  const auto now = [timed] { return timed ? Clock::now() : Clock::time_point{}; };  // one thread: nothing to balance
+  const auto start = now();
   const Range nodes = nodes_in_layers(grid, layers);
   const LayerArrays a = scratch.arrays(chunk);
   copy_in(grid, state.positions, a, kPosition, nodes);
   if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
+  const auto before_barrier = now();
   barrier();
+  const auto after_barrier = now();
   const LayerPasses passes{grid, a, with_rate};
   const int first = layers.begin;
   // the springs of the layer below that end in this chunk's first layer (nothing below the
@@ -534,6 +530,71 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   } else {
     copy_out(grid, a, kForce, nodes, forces);
   }
+  results.seconds[chunk] =
+      std::chrono::duration<double>((before_barrier - start) + (now() - after_barrier)).count();
+}
+
+// The even split: chunks of equal work. A chunk after the first recomputes about a layer below
+// its own (run_chunk), so it takes a layer of cells fewer: the layers are split as if there were
+// chunks - 1 more, each chunk but the first then gives one back. Every chunk keeps a layer at
+// least (cell_slabs >= chunks); the last, which also has the top layer of points, may have only
+// that.
+int even_boundary(const GridLayout& grid, int k, int chunks) {
+  if (k == 0) return 0;
+  if (k == chunks) return grid.points.z();
+  return ((grid.cell_slabs + chunks - 1) * k + chunks - 1) / chunks - (k - 1);
+}
+
+// `split` if it shares this grid's layers among `chunks` (each a layer of points at least, each
+// but the last a layer of cells), else the even split.
+void prepare_split(const GridLayout& grid, int chunks, GridSplit& split) {
+  std::vector<int>& first = split.first_layers;
+  bool fits = static_cast<int>(first.size()) == chunks + 1 && first.front() == 0 &&
+              first.back() == grid.points.z() && first[chunks - 1] <= grid.cell_slabs;
+  for (int k = 0; fits && k < chunks; ++k) fits = first[k] < first[k + 1];
+  if (fits && static_cast<int>(split.seconds.size()) == chunks) return;
+  if (!fits) {
+    first.resize(chunks + 1);
+    for (int k = 0; k <= chunks; ++k) first[k] = even_boundary(grid, k, chunks);
+  }
+  split.seconds.assign(chunks, 0.0);
+  split.calls = 0;
+}
+
+// Calls timed before the split may move: enough to see past a single slow step.
+constexpr int kSplitCalls = 8;
+
+// After kSplitCalls calls, moves the one boundary between neighbouring chunks whose move by a
+// layer (from the slower to the faster, a layer costing its chunk's mean) shortens the slower of
+// the two most; none when no move would (their times differ by less than about a layer's).
+void balance_split(const GridLayout& grid, const ChunkResults& results, int chunks, GridSplit& split) {
+  for (int k = 0; k < chunks; ++k) split.seconds[k] += results.seconds[k];
+  if (++split.calls < kSplitCalls) return;
+  std::vector<int>& first = split.first_layers;
+  int best_boundary = 0, best_step = 0;
+  double best_gain = 0.0;
+  for (int k = 0; k + 1 < chunks; ++k) {
+    const double lower = split.seconds[k], upper = split.seconds[k + 1];
+    const int lower_layers = first[k + 1] - first[k], upper_layers = first[k + 2] - first[k + 1];
+    const bool upper_keeps_cells = k + 1 < chunks - 1 || first[k + 1] + 1 <= grid.cell_slabs;
+    double gain = 0.0;
+    int step = 0;
+    if (lower > upper && lower_layers > 1) {  // the lower chunk's top layer to the upper
+      gain = lower - std::max(lower - lower / lower_layers, upper + upper / upper_layers);
+      step = -1;
+    } else if (upper > lower && upper_layers > 1 && upper_keeps_cells) {
+      gain = upper - std::max(upper - upper / upper_layers, lower + lower / lower_layers);
+      step = 1;
+    }
+    if (gain > best_gain) {
+      best_gain = gain;
+      best_boundary = k + 1;
+      best_step = step;
+    }
+  }
+  first[best_boundary] += best_step;
+  split.seconds.assign(chunks, 0.0);
+  split.calls = 0;
 }
 
 }  // namespace
@@ -544,15 +605,19 @@ int grid_threads(const GridLayout& grid, int threads) {
 }
 
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
-                              std::vector<double>& scratch, Eigen::Matrix3Xd& forces, const GridKick* kick) {
+                              std::vector<double>& scratch, GridSplit& split, Eigen::Matrix3Xd& forces,
+                              const GridKick* kick) {
   const int team = grid_threads(grid, threads);
   const GridScratch arrays(grid, team, scratch);
   const int num_nodes = static_cast<int>(grid.point_of_node.size());
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
+  prepare_split(grid, team, split);
   ChunkResults results;
   run_shares(team, [&](int chunk, int chunks, const auto& barrier) {
-    run_chunk(grid, state, with_rate, kick, arrays, chunk, chunks, barrier, results, forces);
+    const Range layers{split.first_layers[chunk], split.first_layers[chunk + 1]};
+    run_chunk(grid, state, with_rate, kick, arrays, layers, chunk, chunks > 1, barrier, results, forces);
   });
+  if (team > 1) balance_split(grid, results, team, split);
   GridForces out;
   out.crushed = results.total_crushed();
   for (double fastest_sq : results.fastest_sq) out.fastest_sq = faster(fastest_sq, out.fastest_sq);

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "cubespring/forces.h"
 #include "cubespring/state.h"
 #include "grid_kick.h"
 #include "grid_layout.h"
@@ -32,9 +33,11 @@ struct GridForces {
 /// (grid_kick.h); when cells are crushed, the caller then redoes the nodes of those cells, whose
 /// spring forces grid_spring_force() gives, with their recovery. `scratch` keeps the grid's
 /// arrays between calls; clear it before using it with another layout (entries the passes never
-/// write must stay as first set).
+/// write must stay as first set). `split` shares the layers among the threads (any split that
+/// gives each thread a layer of points, and every thread but the last a layer of cells, is used
+/// as it is; another is made even) and is balanced by the threads' times.
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
-                              std::vector<double>& scratch, Eigen::Matrix3Xd& forces,
+                              std::vector<double>& scratch, GridSplit& split, Eigen::Matrix3Xd& forces,
                               const GridKick* kick = nullptr);
 
 /// The spring, correction and twist force [N] on `node` that the last grid_spring_forces() with

@@ -26,6 +26,15 @@ struct ForceOptions {
   int threads = 1;      ///< threads for the force passes; the result does not depend on it
 };
 
+/// How the grid passes share a body's z-layers among threads (src/grid_forces.cpp): from an even
+/// split, a layer at a time moves to the thread whose share took less time. Results do not
+/// depend on the split.
+struct GridSplit {
+  std::vector<int> first_layers;  ///< each thread's first z-layer of grid points, then the layer count
+  std::vector<double> seconds;    ///< each thread's time for its share [s], summed over `calls` calls
+  int calls = 0;                  ///< calls timed since the split last moved
+};
+
 /// Scratch arrays of the force passes, kept between calls so that a step allocates nothing.
 struct ForceWorkspace {
   Eigen::Matrix3Xd spring_vector;         ///< x of the second node minus x of the first [m]
@@ -42,6 +51,7 @@ struct ForceWorkspace {
   std::vector<double> grid_arrays;        ///< arrays of the grid passes (src/grid_forces.h)
   std::vector<int> crushed_corners;       ///< nodes of the crushed cells, when the grid passes kicked
   std::shared_ptr<const void> grid_arrays_layout;  ///< the grid layout grid_arrays belong to
+  GridSplit grid_split;                   ///< how the grid passes share the layers among threads
   void resize(const Model& model);
 };
 

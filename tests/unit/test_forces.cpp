@@ -360,6 +360,39 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   }
 }
 
+// The threads' shares of the grid's layers move towards the thread that took less time
+// (GridSplit); any split gives the same bits. A box of 14 layers of cells (15 of points) on 2
+// threads: splits of 1 layer against 14, 13 against 2 and the top layer of points alone give one
+// thread's forces; a split that does not fit the grid is made even; and from 1 layer against 14,
+// the boundary moves up within 6 rounds of timed calls.
+TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
+  const Model model = test::box_model({24, 24, 14}, notes_material(0.3));
+  ASSERT_NE(model.grid_layout, nullptr);
+  const State state = disturbed_state(model, true);
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  ForceWorkspace ws;
+  Eigen::Matrix3Xd one, two;
+  compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+  for (const std::vector<int>& split : {std::vector<int>{0, 1, 15}, {0, 13, 15}, {0, 14, 15}}) {
+    ws.grid_split = GridSplit{split, {}, 0};
+    compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+    ASSERT_EQ(ws.grid_split.first_layers, split);  // used as it was
+    EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0) << split[1];
+  }
+  ws.grid_split = GridSplit{{0, 15, 15}, {}, 0};  // the second thread without a layer
+  compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+  ASSERT_EQ(ws.grid_split.first_layers.size(), 3u);
+  EXPECT_GT(ws.grid_split.first_layers[1], 4);
+  EXPECT_LT(ws.grid_split.first_layers[1], 10);
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
+
+  ws.grid_split = GridSplit{{0, 1, 15}, {}, 0};
+  for (int call = 0; call < 6 * 8; ++call) compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+  EXPECT_GT(ws.grid_split.first_layers[1], 1);
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
+}
+
 // A workspace used by one body and then another whose grid arrays have the same size, but
 // another shape, starts afresh: the second body's forces are those of a workspace of its own.
 TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
