@@ -481,10 +481,11 @@ struct ChunkResults {
 };
 
 // Chunk `chunk` of the work, the z-layers `layers`; barrier() waits for every chunk. Each chunk
-// runs the passes layer after layer in its own ring of temporaries. Its first gather needs the spring forces of the layer below, another chunk's: the chunk
-// recomputes them (the springs and cells of that layer, its z-edges' tensions) rather than wait
-// for that chunk, so that chunks share only the positions and velocities, which every chunk
-// copies in before any reads them. Then each chunk finishes the nodes of its layers, whose
+// runs the passes layer after layer in its own ring of temporaries. Its first gather needs the
+// spring forces of the layer below, another chunk's: the chunk recomputes them (the springs and
+// cells of that layer, its z-edges' tensions) rather than wait for that chunk, so that chunks
+// share only the positions and velocities, which every chunk copies in before any reads them
+// (sharing that layer instead was no faster: docs/data-layout.md). Then each chunk finishes the nodes of its layers, whose
 // forces are complete once its own gathers are: the kick when asked, without waiting to learn
 // whether another chunk found a crushed cell (then the caller redoes the crushed cells' corners
 // with their recovery, from the spring forces left in the grid), else the forces alone. When
@@ -545,12 +546,11 @@ int even_boundary(const GridLayout& grid, int k, int chunks) {
   return ((grid.cell_slabs + chunks - 1) * k + chunks - 1) / chunks - (k - 1);
 }
 
-// `split` if it shares this grid's layers among `chunks` (each a layer of points at least, each
-// but the last a layer of cells), else the even split.
+// `split` if it shares this grid's layers among `chunks` (each a layer of points at least, so
+// each but the last a layer of cells), else the even split.
 void prepare_split(const GridLayout& grid, int chunks, GridSplit& split) {
   std::vector<int>& first = split.first_layers;
-  bool fits = static_cast<int>(first.size()) == chunks + 1 && first.front() == 0 &&
-              first.back() == grid.points.z() && first[chunks - 1] <= grid.cell_slabs;
+  bool fits = static_cast<int>(first.size()) == chunks + 1 && first.front() == 0 && first.back() == grid.points.z();
   for (int k = 0; fits && k < chunks; ++k) fits = first[k] < first[k + 1];
   if (fits && static_cast<int>(split.seconds.size()) == chunks) return;
   if (!fits) {
@@ -566,8 +566,9 @@ constexpr int kSplitCalls = 8;
 
 // After kSplitCalls calls, moves the one boundary between neighbouring chunks whose move by a
 // layer (from the slower to the faster, a layer costing its chunk's mean) shortens the slower of
-// the two most; none when no move would (their times differ by less than about a layer's).
-void balance_split(const GridLayout& grid, const ChunkResults& results, int chunks, GridSplit& split) {
+// the two most; none when no move would (their times differ by less than about a layer's). Each
+// chunk keeps a layer of points.
+void balance_split(const ChunkResults& results, int chunks, GridSplit& split) {
   for (int k = 0; k < chunks; ++k) split.seconds[k] += results.seconds[k];
   if (++split.calls < kSplitCalls) return;
   std::vector<int>& first = split.first_layers;
@@ -576,13 +577,12 @@ void balance_split(const GridLayout& grid, const ChunkResults& results, int chun
   for (int k = 0; k + 1 < chunks; ++k) {
     const double lower = split.seconds[k], upper = split.seconds[k + 1];
     const int lower_layers = first[k + 1] - first[k], upper_layers = first[k + 2] - first[k + 1];
-    const bool upper_keeps_cells = k + 1 < chunks - 1 || first[k + 1] + 1 <= grid.cell_slabs;
     double gain = 0.0;
     int step = 0;
     if (lower > upper && lower_layers > 1) {  // the lower chunk's top layer to the upper
       gain = lower - std::max(lower - lower / lower_layers, upper + upper / upper_layers);
       step = -1;
-    } else if (upper > lower && upper_layers > 1 && upper_keeps_cells) {
+    } else if (upper > lower && upper_layers > 1) {
       gain = upper - std::max(upper - upper / upper_layers, lower + lower / lower_layers);
       step = 1;
     }
@@ -613,11 +613,15 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   prepare_split(grid, team, split);
   ChunkResults results;
+  bool as_planned = true;  // the runtime may give fewer threads (one without OpenMP; OMP_DYNAMIC)
   run_shares(team, [&](int chunk, int chunks, const auto& barrier) {
-    const Range layers{split.first_layers[chunk], split.first_layers[chunk + 1]};
+    if (chunk == 0) as_planned = chunks == team;  // read after the region only
+    const Range layers = chunks == team
+                             ? Range{split.first_layers[chunk], split.first_layers[chunk + 1]}
+                             : Range{even_boundary(grid, chunk, chunks), even_boundary(grid, chunk + 1, chunks)};
     run_chunk(grid, state, with_rate, kick, arrays, layers, chunk, chunks > 1, barrier, results, forces);
   });
-  if (team > 1) balance_split(grid, results, team, split);
+  if (team > 1 && as_planned) balance_split(results, team, split);
   GridForces out;
   out.crushed = results.total_crushed();
   for (double fastest_sq : results.fastest_sq) out.fastest_sq = faster(fastest_sq, out.fastest_sq);

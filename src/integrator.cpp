@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -102,6 +101,7 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
     // v += dt M^-1 f(x, v); x += dt v. The kick drives the driven nodes itself, each thread its
     // own: a serial sweep here would move their cache lines to this thread every step
     KickDrift kick{dt, dt, &state, &candidate_};
+    // (constraints of no model, Constraints(), have no flags for the kick to read)
     const bool kick_drives = constraints.num_nodes() == model.num_nodes();
     if (kick_drives) kick.driven = &constraints;
     fastest_sq = compute_forces_and_kick(model, state, loads, options, workspace_, forces_, kick);
@@ -209,9 +209,11 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   candidate_ = state;
   candidate_.velocities = Eigen::Map<const Eigen::Matrix3Xd>(velocity.data(), 3, num_nodes);
   candidate_.positions += dt * candidate_.velocities;
-  (void)drive_nodes(constraints, dt, state, candidate_, 0, constraints.num_nodes());  // the check below sees every velocity
+  // the check below sees every velocity
+  (void)drive_nodes(constraints, dt, state, candidate_, 0, constraints.num_nodes());
   candidate_.time = state.time + dt;
-  StepReport checked = check(model, settings, std::sqrt(candidate_.velocities.colwise().squaredNorm().maxCoeff()), candidate_);
+  const double fastest = std::sqrt(candidate_.velocities.colwise().squaredNorm().maxCoeff());
+  StepReport checked = check(model, settings, fastest, candidate_);
   if (!checked.ok()) return checked;
   std::swap(state, candidate_);
   return report;

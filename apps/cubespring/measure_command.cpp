@@ -10,11 +10,11 @@
 
 #include "arguments.h"
 #include "commands.h"
+#include "number_checks.h"
 #include "cubespring/experiments.h"
 #include "cubespring/fem_comparison.h"
 #ifdef CUBESPRING_HAS_RENDER
 #include "cantilever_picture.h"
-#include "number_checks.h"
 #endif
 
 namespace cubespring::app {

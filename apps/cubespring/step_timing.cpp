@@ -53,11 +53,9 @@ void TwoAtOnce::operator()() const {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(2)
   {
-    if (omp_get_thread_num() == 0) {
-      first_();
-    } else {
-      second_();
-    }
+    if (omp_get_thread_num() == 0) first_();
+    // one thread when the runtime gives no second (OMP_THREAD_LIMIT, OMP_DYNAMIC): it runs both
+    if (omp_get_thread_num() == 1 || omp_get_num_threads() == 1) second_();
   }
 #else
   first_();
