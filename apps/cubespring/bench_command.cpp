@@ -21,6 +21,7 @@
 #include "step_timing.h"
 #include "cubespring/constraints.h"
 #include "cubespring/integrator.h"
+#include "cubespring/stable_time_step.h"
 
 namespace cubespring::app {
 namespace {
@@ -88,12 +89,15 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   if (!exact) throw std::runtime_error(exact.message());
 
   Eigen::Matrix3Xd forces(3, model.num_nodes());
-  ExplicitStepper symplectic1(model, clamp, loads, start, Integrator::kSymplecticEuler, 1);
-  ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2);
-  ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1);
-  ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1);
-  ExplicitStepper first_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1);
-  ExplicitStepper second_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1);
+  // half the stable step, found once per model (it assembles the stiffness)
+  const double dt = 0.5 * max_stable_time_step(model);
+  const double exact_dt = 0.5 * max_stable_time_step(exact.value());
+  ExplicitStepper symplectic1(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
+  ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
+  ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1, dt);
+  ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1, exact_dt);
+  ExplicitStepper first_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
+  ExplicitStepper second_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   const TwoAtOnce two_bodies(std::ref(first_body), std::ref(second_body));
   std::vector<std::function<void()>> columns{[&] { bare_spring_pass(model, start.positions, forces); },
                                              std::ref(symplectic1), std::ref(symplectic2), std::ref(verlet1),

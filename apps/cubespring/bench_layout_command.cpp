@@ -19,6 +19,7 @@
 #include "number_checks.h"
 #include "step_timing.h"
 #include "cubespring/model.h"
+#include "cubespring/stable_time_step.h"
 
 namespace cubespring::app {
 namespace {
@@ -108,10 +109,11 @@ LayoutRow bench_layouts(LatticeDesc desc, CellModel cell_model, bool inclusion, 
   Loads loads;
   loads.gravity = {0, 0, -9.81};
   const State start = rest_state(lists);
-  ExplicitStepper lists1(lists, clamp, loads, start, Integrator::kSymplecticEuler, 1);
-  ExplicitStepper grid1(grid, clamp, loads, start, Integrator::kSymplecticEuler, 1);
-  ExplicitStepper lists2(lists, clamp, loads, start, Integrator::kSymplecticEuler, 2);
-  ExplicitStepper grid2(grid, clamp, loads, start, Integrator::kSymplecticEuler, 2);
+  const double dt = 0.5 * max_stable_time_step(lists);  // the same body in either layout
+  ExplicitStepper lists1(lists, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
+  ExplicitStepper grid1(grid, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
+  ExplicitStepper lists2(lists, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
+  ExplicitStepper grid2(grid, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
   const std::vector<double> times =
       interleaved_best_times(min_seconds, {std::ref(lists1), std::ref(grid1), std::ref(lists2), std::ref(grid2)});
   row.lists[0] = times[0];

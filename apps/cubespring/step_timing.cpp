@@ -10,7 +10,6 @@
 #include <omp.h>
 #endif
 
-#include "cubespring/stable_time_step.h"
 
 namespace cubespring::app {
 
@@ -42,11 +41,11 @@ std::vector<double> interleaved_best_times(double min_seconds, const std::vector
 }
 
 ExplicitStepper::ExplicitStepper(const Model& model, const Constraints& constraints, const Loads& loads,
-                                 const State& start, Integrator integrator, int threads)
+                                 const State& start, Integrator integrator, int threads, double time_step)
     : model_(model), constraints_(constraints), loads_(loads), state_(start), stepper_(model) {
   settings_.integrator = integrator;
   settings_.threads = threads;
-  settings_.time_step = 0.5 * max_stable_time_step(model);
+  settings_.time_step = time_step;
 }
 
 void TwoAtOnce::operator()() const {
