@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include <Eigen/IterativeLinearSolvers>
 
@@ -137,7 +138,13 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
                                   const StepSettings& settings, State& state) {
   const double dt = settings.time_step;
   const int num_nodes = model.num_nodes();
-  if (!assembler_) assembler_ = std::make_unique<StiffnessAssembler>(model);
+  if (!assembler_) {
+    try {
+      assembler_ = std::make_unique<StiffnessAssembler>(model);
+    } catch (const std::length_error& too_large) {
+      return {StepStatus::kSolverFailed, too_large.what()};
+    }
+  }
 
   compute_forces(model, state, loads, ForceOptions{false, settings.threads}, workspace_, forces_);
   assembler_->assemble(model, state.positions, StiffnessKind::kPositiveSemiDefinite, dt * dt, dt, system_);

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include <Eigen/SparseCholesky>
 
@@ -129,7 +131,13 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   const double round_off = 1e-13 * stiffest * model.cell_size.maxCoeff() * std::sqrt(num_nodes);
   reference_force = std::max(reference_force, round_off / settings.tolerance);
 
-  StiffnessAssembler assembler(model);
+  std::unique_ptr<StiffnessAssembler> assembler;
+  try {
+    assembler = std::make_unique<StiffnessAssembler>(model);
+  } catch (const std::length_error& too_large) {
+    report.message = too_large.what();
+    return report;
+  }
   Eigen::Matrix3Xd x = model.rest_positions;
   Eigen::Matrix3Xd start_driven = model.rest_positions;
   double done = 0.0;
@@ -141,7 +149,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
     for (int n = 0; n < num_nodes; ++n) {
       if (problem.driven[3 * n]) trial.col(n) = start_driven.col(n) + next * (target.col(n) - start_driven.col(n));
     }
-    if (newton(problem, scaled_loads(loads, next), reference_force, settings, assembler, trial, report)) {
+    if (newton(problem, scaled_loads(loads, next), reference_force, settings, *assembler, trial, report)) {
       x = trial;
       done = next;
       ++report.load_steps;

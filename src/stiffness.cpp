@@ -7,6 +7,7 @@
 #include "cubespring/stiffness.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>

@@ -10,7 +10,6 @@
 #include <omp.h>
 #endif
 
-
 namespace cubespring::app {
 
 double time_per_call(double min_seconds, const std::function<void()>& fn, FirstCall first) {

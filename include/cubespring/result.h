@@ -9,7 +9,9 @@
 namespace cubespring {
 
 /// Outcome of an operation on outside input: success, or a message that names the value at fault,
-/// what was expected, and (where known) the file. No exceptions cross the API.
+/// what was expected, and (where known) the file. No exceptions cross the API but std::bad_alloc
+/// and, from a body too large for a sparse matrix's int indices, StiffnessAssembler's and
+/// max_stable_time_step's std::length_error.
 class [[nodiscard]] Status {
  public:
   Status() = default;

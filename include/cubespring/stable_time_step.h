@@ -21,7 +21,10 @@ enum class FrequencyBound {
   kLanczos,
 };
 
-/// The body's highest natural frequency omega_max [rad/s], found as `bound` says.
+/// The body's highest natural frequency omega_max [rad/s], found as `bound` says. Both bounds
+/// assemble the body's stiffness (0.4 s for 64x16x16 cells, 6.7 s and 2 GB for 64^3): find it
+/// once per body. Throws std::length_error for a body too large for the matrix's int indices
+/// (StiffnessAssembler).
 double max_frequency(const Model& model, FrequencyBound bound = FrequencyBound::kGershgorin);
 
 /// The largest time step [s] at which the explicit integrators stay stable for this body at rest:

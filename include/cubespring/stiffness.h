@@ -32,6 +32,9 @@ enum class StiffnessKind {
 /// 3 * node + axis; every pair of nodes that share a cell or a spring has a 3x3 block.
 class StiffnessAssembler {
  public:
+  /// Throws std::length_error, naming the node count, when the matrix would hold more entries
+  /// than its int indices address (about 8 million nodes); the implicit step and the static
+  /// solver report that as their failure.
   explicit StiffnessAssembler(const Model& model);
 
   void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,

@@ -1,6 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The stiffness matrix against finite differences of the forces, and the zero-energy modes.
+#include <set>
+#include <utility>
+
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
@@ -25,6 +28,44 @@ Eigen::MatrixXd finite_difference_stiffness(const Model& model, const Eigen::Mat
     k.col(i) = -Eigen::Map<const Eigen::VectorXd>(df.data(), df.size()) / (2 * step);
   }
   return k;
+}
+
+// The pattern has a 3x3 block for every node with itself, the two ends of each spring and every
+// two corners of a cell, and nothing else: rows of sorted columns, compressed. An L of 3 cells
+// (corners shared by 1 to 3 cells) against the blocks listed from the model's springs and cells.
+TEST(Stiffness, PatternHoldsTheBlocksOfSpringsAndCells) {
+  LatticeDesc desc;
+  desc.cells = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}};
+  Result<Model> built = build_model(desc);
+  ASSERT_TRUE(built.ok()) << built.message();
+  const Model& model = built.value();
+  std::set<std::pair<int, int>> blocks;
+  for (int n = 0; n < model.num_nodes(); ++n) blocks.insert({n, n});
+  for (const auto& ends : model.spring_nodes) {
+    blocks.insert({ends[0], ends[1]});
+    blocks.insert({ends[1], ends[0]});
+  }
+  for (const auto& corners : model.cell_nodes) {
+    for (int p : corners) {
+      for (int q : corners) blocks.insert({p, q});
+    }
+  }
+  const StiffnessAssembler assembler(model);
+  const SparseMatrix& pattern = assembler.pattern();
+  ASSERT_TRUE(pattern.isCompressed());
+  ASSERT_EQ(pattern.rows(), 3 * model.num_nodes());
+  ASSERT_EQ(pattern.nonZeros(), static_cast<Eigen::Index>(9 * blocks.size()));
+  std::set<std::pair<int, int>> found;
+  for (int row = 0; row < pattern.rows(); ++row) {
+    int previous = -1;
+    for (SparseMatrix::InnerIterator it(pattern, row); it; ++it) {
+      EXPECT_GT(it.col(), previous) << "row " << row;
+      EXPECT_EQ(it.value(), 0.0);
+      previous = static_cast<int>(it.col());
+      found.insert({row / 3, static_cast<int>(it.col()) / 3});
+    }
+  }
+  EXPECT_EQ(found, blocks);
 }
 
 TEST(Stiffness, ExactMatchesFiniteDifferences) {

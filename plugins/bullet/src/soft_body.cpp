@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include <btBulletDynamicsCommon.h>
 
@@ -42,9 +43,13 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->step_settings_.threads = settings.threads;
   // explicit: the stable step of the body at rest, which its contacts do not stiffen (they move
   // vertices, they add no springs)
-  body->sub_step_ = settings.integrator == Integrator::kImplicitEuler
-                        ? settings.max_implicit_step
-                        : settings.time_step_safety * max_stable_time_step(body->model_);
+  try {
+    body->sub_step_ = settings.integrator == Integrator::kImplicitEuler
+                          ? settings.max_implicit_step
+                          : settings.time_step_safety * max_stable_time_step(body->model_);
+  } catch (const std::length_error& too_large) {
+    return Status::error(too_large.what());
+  }
   body->contact_ = settings.contact;
 
   ContactSurface surface;
