@@ -180,7 +180,7 @@ void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x,
     std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
   }
   const bool exact = kind == StiffnessKind::kExact;
-  ForceWorkspace ws;
+  ForceWorkspace& ws = tensions_;
   measure_tensions(model, x, ws);
 
   // springs: material and geometric parts

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "cubespring/forces.h"
 #include "cubespring/model.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
@@ -53,6 +54,8 @@ class StiffnessAssembler {
   std::vector<std::array<int, 2>> spring_position_;      // per spring: j in row i, i in row j
   std::vector<std::array<int, 64>> cell_position_;       // per cell: corner q in row of corner p
   std::vector<Eigen::Matrix3d> positive_correction_;      // per cell: PSD part of D
+  ForceWorkspace tensions_;  // the springs' and cells' tensions at the positions, kept: an implicit
+                             // step or Newton iteration allocates no per-spring arrays
 };
 
 }  // namespace cubespring

@@ -68,6 +68,28 @@ TEST(Stiffness, PatternHoldsTheBlocksOfSpringsAndCells) {
   EXPECT_EQ(found, blocks);
 }
 
+// The assembler keeps its pattern and its tension arrays between calls: a matrix assembled after
+// another (here after a crushed cell, whose inversion term adds to the first) is the one a new
+// assembler gives, to the bit.
+TEST(Stiffness, AssemblingAgainGivesWhatANewAssemblerGives) {
+  const Model model = test::box_model({2, 1, 1}, test::notes_material(0.3));
+  Eigen::Matrix3Xd crushed = test::perturbed(model, 5e-4);
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    if (model.node_grid_index[n].z() == 1) crushed(2, n) -= 0.0095;
+  }
+  const Eigen::Matrix3Xd x = test::perturbed(model, 1.5e-3);
+  for (const StiffnessKind kind : {StiffnessKind::kExact, StiffnessKind::kPositiveSemiDefinite}) {
+    StiffnessAssembler reused(model);
+    SparseMatrix first, again, fresh;
+    reused.assemble(model, crushed, kind, 1.0, 0.0, first);
+    reused.assemble(model, x, kind, 1.0, 0.0, again);
+    StiffnessAssembler(model).assemble(model, x, kind, 1.0, 0.0, fresh);
+    ASSERT_EQ(again.nonZeros(), fresh.nonZeros());
+    EXPECT_NE(Eigen::MatrixXd(first), Eigen::MatrixXd(fresh));  // the first call's values are gone
+    EXPECT_EQ(Eigen::MatrixXd(again), Eigen::MatrixXd(fresh));
+  }
+}
+
 TEST(Stiffness, ExactMatchesFiniteDifferences) {
   for (double nu : {0.0, 0.3, 0.49}) {
     const Model model = test::box_model({2, 1, 1}, test::notes_material(nu));
