@@ -74,9 +74,8 @@ double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::Ve
 }  // namespace
 
 double max_frequency(const Model& model, FrequencyBound bound) {
-  StiffnessAssembler assembler(model);
-  SparseMatrix stiffness;
-  assembler.assemble(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0, stiffness);
+  const SparseMatrix stiffness = StiffnessAssembler(model).assemble_once(
+      model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0);
   const double gershgorin = gershgorin_bound(stiffness, model.mass);
   if (bound == FrequencyBound::kGershgorin) return std::sqrt(gershgorin);
   return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.mass)));

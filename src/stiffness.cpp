@@ -174,11 +174,25 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
 
 void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                   double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
+  if (pattern_.rows() != 3 * model.num_nodes()) *this = StiffnessAssembler(model);  // handed over, or another body
   if (matrix.nonZeros() != pattern_.nonZeros() || matrix.rows() != pattern_.rows()) {
     matrix = pattern_;
   } else {
     std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
   }
+  add_values(model, x, kind, stiffness_scale, damping_scale, matrix);
+}
+
+SparseMatrix StiffnessAssembler::assemble_once(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
+                                               double stiffness_scale, double damping_scale) && {
+  SparseMatrix matrix;
+  matrix.swap(pattern_);  // its values are zeros (swapped: Eigen 3.4's SparseMatrix has no move)
+  add_values(model, x, kind, stiffness_scale, damping_scale, matrix);
+  return matrix;
+}
+
+void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
+                                    double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
   const bool exact = kind == StiffnessKind::kExact;
   ForceWorkspace& ws = tensions_;
   measure_tensions(model, x, ws);

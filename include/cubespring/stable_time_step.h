@@ -22,7 +22,7 @@ enum class FrequencyBound {
 };
 
 /// The body's highest natural frequency omega_max [rad/s], found as `bound` says. Both bounds
-/// assemble the body's stiffness (0.4 s for 64x16x16 cells, 6.7 s and 2 GB for 64^3): find it
+/// assemble the body's stiffness (0.3 s for 64x16x16 cells, 5 s and 1.2 GB for 64^3): find it
 /// once per body. Throws std::length_error for a body too large for the matrix's int indices
 /// (StiffnessAssembler).
 double max_frequency(const Model& model, FrequencyBound bound = FrequencyBound::kGershgorin);

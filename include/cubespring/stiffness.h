@@ -41,10 +41,19 @@ class StiffnessAssembler {
   void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,
                 double stiffness_scale, double damping_scale, SparseMatrix& matrix);
 
+  /// The same matrix, assembled into the pattern itself rather than a copy of it: for a caller
+  /// that needs one matrix (the stable-step helper), one copy of the matrix in memory instead of
+  /// two. Hands the pattern over: `std::move(assembler).assemble_once(...)`; a later assemble()
+  /// builds it again.
+  SparseMatrix assemble_once(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,
+                             double stiffness_scale, double damping_scale) &&;
+
   /// The matrix with the pattern and every value zero.
   const SparseMatrix& pattern() const { return pattern_; }
 
  private:
+  void add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind, double stiffness_scale,
+                  double damping_scale, SparseMatrix& matrix);
   void add_block(SparseMatrix& matrix, int row_node, int position, const Eigen::Matrix3d& block) const;
   void add_twist(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness,
                  SparseMatrix& matrix) const;

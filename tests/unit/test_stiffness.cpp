@@ -70,7 +70,7 @@ TEST(Stiffness, PatternHoldsTheBlocksOfSpringsAndCells) {
 
 // The assembler keeps its pattern and its tension arrays between calls: a matrix assembled after
 // another (here after a crushed cell, whose inversion term adds to the first) is the one a new
-// assembler gives, to the bit.
+// assembler gives, to the bit; and so is the one it assembles into its own pattern (once).
 TEST(Stiffness, AssemblingAgainGivesWhatANewAssemblerGives) {
   const Model model = test::box_model({2, 1, 1}, test::notes_material(0.3));
   Eigen::Matrix3Xd crushed = test::perturbed(model, 5e-4);
@@ -87,6 +87,12 @@ TEST(Stiffness, AssemblingAgainGivesWhatANewAssemblerGives) {
     ASSERT_EQ(again.nonZeros(), fresh.nonZeros());
     EXPECT_NE(Eigen::MatrixXd(first), Eigen::MatrixXd(fresh));  // the first call's values are gone
     EXPECT_EQ(Eigen::MatrixXd(again), Eigen::MatrixXd(fresh));
+    const SparseMatrix once = std::move(reused).assemble_once(model, x, kind, 1.0, 0.0);
+    ASSERT_EQ(once.nonZeros(), fresh.nonZeros());
+    EXPECT_EQ(Eigen::MatrixXd(once), Eigen::MatrixXd(fresh));
+    SparseMatrix after;  // the pattern handed over is built again
+    reused.assemble(model, x, kind, 1.0, 0.0, after);  // NOLINT(bugprone-use-after-move)
+    EXPECT_EQ(Eigen::MatrixXd(after), Eigen::MatrixXd(fresh));
   }
 }
 
