@@ -9,8 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <Eigen/IterativeLinearSolvers>
-
+#include "conjugate_gradient.h"
 #include "drive_nodes.h"
 #include "force_passes.h"
 
@@ -196,18 +195,16 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
     }
   }
 
-  Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper> solver;
-  solver.setTolerance(settings.solver_tolerance);
-  solver.setMaxIterations(settings.solver_max_iterations);
-  solver.compute(system_);
-  const Eigen::VectorXd velocity = solver.solveWithGuess(rhs, guess);
+  Eigen::VectorXd& velocity = guess;  // solved in place
+  const ConjugateGradientResult solved = conjugate_gradient(
+      system_, rhs, velocity, settings.solver_tolerance, settings.solver_max_iterations, settings.threads);
   StepReport report;
-  report.solver_iterations = static_cast<int>(solver.iterations());
-  report.solver_residual = solver.error();
-  if (solver.info() != Eigen::Success || !velocity.allFinite()) {
+  report.solver_iterations = solved.iterations;
+  report.solver_residual = solved.relative_residual;
+  if (!solved.converged || !velocity.allFinite()) {
     std::ostringstream message;
-    message << "conjugate gradients stopped after " << solver.iterations() << " iterations at relative residual "
-            << solver.error() << " (tolerance " << settings.solver_tolerance << ")";
+    message << "conjugate gradients stopped after " << solved.iterations << " iterations at relative residual "
+            << solved.relative_residual << " (tolerance " << settings.solver_tolerance << ")";
     report.status = StepStatus::kSolverFailed;
     report.message = message.str();
     return report;

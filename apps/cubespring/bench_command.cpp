@@ -57,7 +57,8 @@ void bare_spring_pass(const Model& model, const Eigen::Matrix3Xd& x, Eigen::Matr
 struct Row {
   std::string name;
   int cells = 0, nodes = 0, springs = 0;
-  double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, implicit_step = 0;
+  double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, verlet2 = 0;
+  double implicit_step = 0, implicit_step2 = 0;  // 1 and 2 threads
   double two_bodies = 0;  // two copies of the body's 1-thread symplectic step at once, on 2 threads
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
   int implicit_iterations = 0;
@@ -95,13 +96,14 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   ExplicitStepper symplectic1(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
   ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1, dt);
+  ExplicitStepper verlet2(model, clamp, loads, start, Integrator::kVelocityVerlet, 2, dt);
   ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1, exact_dt);
   ExplicitStepper first_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   ExplicitStepper second_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   const TwoAtOnce two_bodies(std::ref(first_body), std::ref(second_body));
   std::vector<std::function<void()>> columns{[&] { bare_spring_pass(model, start.positions, forces); },
                                              std::ref(symplectic1), std::ref(symplectic2), std::ref(verlet1),
-                                             std::ref(exact1), std::ref(two_bodies)};
+                                             std::ref(exact1), std::ref(two_bodies), std::ref(verlet2)};
   std::unique_ptr<GridSpringFloor> floor;
   if (box != nullptr) {
     const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
@@ -117,28 +119,36 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   row.verlet1 = times[3];
   row.exact_bending1 = times[4];
   row.two_bodies = times[5];
+  row.verlet2 = times[6];
   if (floor) {
     if (floor->springs() != model.num_springs() || !std::isfinite(floor->checksum())) {
       throw std::runtime_error("the grid floor of " + name + " visited " + std::to_string(floor->springs()) +
                                " springs, the model has " + std::to_string(model.num_springs()));
     }
-    row.grid_bare = times[6];
+    row.grid_bare = times[7];
   }
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
-    StepSettings settings;
-    settings.integrator = Integrator::kImplicitEuler;
-    settings.time_step = 1e-3;
-    settings.solver_tolerance = 1e-6;
-    State state = start;
-    Stepper stepper(model);
-    int iterations = 0, steps = 0;
-    row.implicit_step = time_per_call(o.min_seconds, [&] {
-      const StepReport report = stepper.step(model, clamp, loads, settings, state);
-      iterations += report.solver_iterations;
-      ++steps;
-    });
-    row.implicit_iterations = iterations / std::max(1, steps);
+    // the same steps on 1 and 2 threads (the same bits: the same CG iterations)
+    const auto time_implicit = [&](int threads) {
+      StepSettings settings;
+      settings.integrator = Integrator::kImplicitEuler;
+      settings.time_step = 1e-3;
+      settings.solver_tolerance = 1e-6;
+      settings.threads = threads;
+      State state = start;
+      Stepper stepper(model);
+      int iterations = 0, steps = 0;
+      const double seconds = time_per_call(o.min_seconds, [&] {
+        const StepReport report = stepper.step(model, clamp, loads, settings, state);
+        iterations += report.solver_iterations;
+        ++steps;
+      });
+      row.implicit_iterations = iterations / std::max(1, steps);
+      return seconds;
+    };
+    row.implicit_step = time_implicit(1);
+    row.implicit_step2 = time_implicit(2);
   }
   return row;
 }
@@ -171,9 +181,12 @@ int run_bench(const BenchOptions& o) {
                      {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
                      {"two_bodies_at_once_ms", 1e3 * r.two_bodies},
                      {"two_thread_ceiling", 2.0 * r.symplectic1 / r.two_bodies},
-                     {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}}},
+                     {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}, {"2", 1e3 * r.verlet2}}},
                      {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
                      {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
+                     {"implicit_euler_threads_ms", r.implicit_step > 0 ? nlohmann::json{{"1", 1e3 * r.implicit_step},
+                                                                                      {"2", 1e3 * r.implicit_step2}}
+                                                                      : nlohmann::json()},
                      {"implicit_cg_iterations", r.implicit_iterations},
                      {"implicit_wall_per_simulated_second_s", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
     }
@@ -183,9 +196,10 @@ int run_bench(const BenchOptions& o) {
   std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"
               ">= %.2f s each; implicit: mean over >= %.1f s)\n",
               kBatches, o.min_seconds / kBatches, o.min_seconds);
-  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %7s | %10s %5s %10s\n", "body",
-              "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling", "full/bare",
-              "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "exact 1t", "exact/pap", "implicit", "CG it", "s/sim s");
+  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %10s %5s %10s %10s\n",
+              "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling",
+              "full/bare", "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap",
+              "implicit", "CG it", "s/sim s", "impl 2t");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -193,15 +207,16 @@ int run_bench(const BenchOptions& o) {
       std::snprintf(over_grid, sizeof over_grid, "%.2f", r.symplectic1 / r.grid_bare);
       std::snprintf(grid_rate, sizeof grid_rate, "%.3f", 1e-9 * r.springs / r.grid_bare);
     }
-    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %7.2f |",
+    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %9.4f %7.2f |",
                 r.name.c_str(), r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1,
                 1e3 * r.symplectic2, r.symplectic1 / r.symplectic2, 2.0 * r.symplectic1 / r.two_bodies,
-                r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate,
-                1e3 * r.verlet1, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1);
+                r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate, 1e3 * r.verlet1,
+                1e3 * r.verlet2, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1);
     if (r.implicit_step > 0) {
-      std::printf(" %10.3f %5d %10.2f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3);
+      std::printf(" %10.3f %5d %10.2f %10.3f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3,
+                  1e3 * r.implicit_step2);
     } else {
-      std::printf(" %10s %5s %10s\n", "-", "-", "-");
+      std::printf(" %10s %5s %10s %10s\n", "-", "-", "-", "-");
     }
   }
   std::printf("bare: one linear spring-force pass over the spring lists; grid bare: the same with implicit lattice\n"
@@ -212,7 +227,8 @@ int run_bench(const BenchOptions& o) {
               "it a little, as each half's arrays fit the caches better); full/bare, full/grid:\n"
               "1-thread step over each floor; Gspring/s, grid G/s: springs per second of each floor;\n"
               "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
-              "implicit: dt = 1 ms, CG to 1e-6; s/sim s: wall seconds per simulated second.\n");
+              "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
+              "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads.\n");
   return 0;
 }
 

@@ -179,6 +179,7 @@ TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
     EXPECT_GT(row["symplectic_euler_ms"]["1"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["symplectic_euler_ms"]["2"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["velocity_verlet_ms"]["1"].get<double>(), 0.0) << row.dump();
+    EXPECT_GT(row["velocity_verlet_ms"]["2"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["exact_bending_symplectic_euler_ms"]["1"].get<double>(), 0.0) << row.dump();
     const double two_bodies = row["two_bodies_at_once_ms"].get<double>();
     EXPECT_GT(two_bodies, 0.0) << row.dump();
@@ -186,6 +187,8 @@ TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
                 1e-12)
         << row.dump();
     EXPECT_GT(row["implicit_euler_ms"].get<double>(), 0.0) << row.dump();
+    EXPECT_EQ(row["implicit_euler_threads_ms"]["1"], row["implicit_euler_ms"]) << row.dump();
+    EXPECT_GT(row["implicit_euler_threads_ms"]["2"].get<double>(), 0.0) << row.dump();
     EXPECT_GT(row["implicit_cg_iterations"].get<int>(), 0) << row.dump();
   }
 }
