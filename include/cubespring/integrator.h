@@ -27,7 +27,8 @@ const char* integrator_name(Integrator integrator);
 struct StepSettings {
   Integrator integrator = Integrator::kSymplecticEuler;
   double time_step = 1e-4;              ///< dt [s], > 0
-  int threads = 1;                      ///< force-pass threads; results do not depend on it
+  int threads = 1;                      ///< threads of the force passes and the implicit step's
+                                        ///< conjugate gradients; results do not depend on it
   double solver_tolerance = 1e-6;       ///< implicit: CG relative residual
   int solver_max_iterations = 2000;     ///< implicit: CG iteration cap
   /// A node faster than this is taken as a blow-up [m/s]; 0 means 10 times the fastest pressure
