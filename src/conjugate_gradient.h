@@ -12,7 +12,8 @@ namespace cubespring {
 
 struct ConjugateGradientResult {
   int iterations = 0;              ///< products with the matrix
-  double relative_residual = 0.0;  ///< |b - A x| / |b| at the end (0 for b = 0)
+  double relative_residual = 0.0;  ///< |r| / |b| at the end, r the residual as CG updates it
+                                   ///< (b - A x to rounding); 0 for b = 0
   bool converged = false;          ///< relative_residual <= the tolerance
 };
 

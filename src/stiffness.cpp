@@ -174,7 +174,7 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
 
 void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                   double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
-  if (pattern_.rows() != 3 * model.num_nodes()) *this = StiffnessAssembler(model);  // handed over, or another body
+  rebuild_pattern_if_handed_over(model);
   if (matrix.nonZeros() != pattern_.nonZeros() || matrix.rows() != pattern_.rows()) {
     matrix = pattern_;
   } else {
@@ -185,10 +185,19 @@ void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x,
 
 SparseMatrix StiffnessAssembler::assemble_once(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                                double stiffness_scale, double damping_scale) && {
+  rebuild_pattern_if_handed_over(model);
   SparseMatrix matrix;
   matrix.swap(pattern_);  // its values are zeros (swapped: Eigen 3.4's SparseMatrix has no move)
+  pattern_handed_over_ = true;
   add_values(model, x, kind, stiffness_scale, damping_scale, matrix);
   return matrix;
+}
+
+void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
+  if (!pattern_handed_over_) return;
+  StiffnessAssembler again(model);
+  pattern_.swap(again.pattern_);  // swapped: Eigen 3.4's SparseMatrix has no move
+  pattern_handed_over_ = false;
 }
 
 void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,

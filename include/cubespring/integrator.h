@@ -29,8 +29,9 @@ struct StepSettings {
   double time_step = 1e-4;              ///< dt [s], > 0
   int threads = 1;                      ///< threads of the force passes and the implicit step's
                                         ///< conjugate gradients; results do not depend on it
-  double solver_tolerance = 1e-6;       ///< implicit: CG relative residual
-  int solver_max_iterations = 2000;     ///< implicit: CG iteration cap
+  double solver_tolerance = 1e-6;       ///< implicit: CG relative residual, > 0
+  int solver_max_iterations = 2000;     ///< implicit: CG iteration cap, >= 1 (a residual that turns
+                                        ///< NaN stops CG before it: solver-failed)
   /// A node faster than this is taken as a blow-up [m/s]; 0 means 10 times the fastest pressure
   /// wave speed of the body's materials.
   double speed_limit = 0.0;
@@ -47,8 +48,8 @@ const char* step_status_name(StepStatus status);
 struct StepReport {
   StepStatus status = StepStatus::kOk;
   std::string message;          ///< what went wrong, with figures; empty when ok
-  int solver_iterations = 0;    ///< implicit: CG iterations
-  double solver_residual = 0;   ///< implicit: CG relative residual reached
+  int solver_iterations = 0;    ///< implicit: CG iterations (products with the matrix)
+  double solver_residual = 0;   ///< implicit: CG relative residual reached (of its updated residual)
   bool ok() const { return status == StepStatus::kOk; }
 };
 

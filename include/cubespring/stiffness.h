@@ -44,7 +44,7 @@ class StiffnessAssembler {
   /// The same matrix, assembled into the pattern itself rather than a copy of it: for a caller
   /// that needs one matrix (the stable-step helper), one copy of the matrix in memory instead of
   /// two. Hands the pattern over: `std::move(assembler).assemble_once(...)`; a later assemble()
-  /// builds it again.
+  /// builds it again. (An assembler serves the model it was built for, in both calls.)
   SparseMatrix assemble_once(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,
                              double stiffness_scale, double damping_scale) &&;
 
@@ -52,6 +52,7 @@ class StiffnessAssembler {
   const SparseMatrix& pattern() const { return pattern_; }
 
  private:
+  void rebuild_pattern_if_handed_over(const Model& model);
   void add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind, double stiffness_scale,
                   double damping_scale, SparseMatrix& matrix);
   void add_block(SparseMatrix& matrix, int row_node, int position, const Eigen::Matrix3d& block) const;
@@ -59,6 +60,7 @@ class StiffnessAssembler {
                  SparseMatrix& matrix) const;
 
   SparseMatrix pattern_;
+  bool pattern_handed_over_ = false;                      // by assemble_once
   std::vector<int> diagonal_position_;                    // per node: own position in its row
   std::vector<std::array<int, 2>> spring_position_;      // per spring: j in row i, i in row j
   std::vector<std::array<int, 64>> cell_position_;       // per cell: corner q in row of corner p

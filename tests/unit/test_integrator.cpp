@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -490,6 +491,22 @@ TEST(Integrator, RefusesABadTimeStep) {
   const StepReport report = stepper.step(model, Constraints(model), Loads{}, settings, state);
   EXPECT_FALSE(report.ok());
   EXPECT_NE(report.message.find("time_step"), std::string::npos);
+}
+
+TEST(Integrator, RefusesBadSolverSettings) {
+  const Model model = test::box_model({1, 1, 1}, Material{});
+  for (const auto& [tolerance, iterations] : {std::pair{0.0, 10}, std::pair{1e-6, 0}, std::pair{std::nan(""), 10}}) {
+    State state = rest_state(model);
+    StepSettings settings;
+    settings.integrator = Integrator::kImplicitEuler;
+    settings.solver_tolerance = tolerance;
+    settings.solver_max_iterations = iterations;
+    Stepper stepper(model);
+    const StepReport report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+    EXPECT_EQ(report.status, StepStatus::kSolverFailed) << tolerance << " " << iterations;
+    EXPECT_NE(report.message.find("solver_max_iterations = " + std::to_string(iterations)), std::string::npos)
+        << report.message;
+  }
 }
 
 TEST(Integrator, CgFailureIsAStatusNotACrash) {
