@@ -52,10 +52,12 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
     return {StepStatus::kUnstable, message.str()};
   }
   if (settings.integrator == Integrator::kImplicitEuler) {
-    if (!(settings.solver_tolerance > 0.0) || settings.solver_max_iterations < 1) {
+    if (!(settings.solver_tolerance > 0.0) || !std::isfinite(settings.solver_tolerance) ||
+        settings.solver_max_iterations < 1) {
       std::ostringstream message;
       message << "solver_tolerance = " << settings.solver_tolerance << ", solver_max_iterations = "
-              << settings.solver_max_iterations << ": the implicit step needs a tolerance > 0 and at least 1 iteration";
+              << settings.solver_max_iterations
+              << ": the implicit step needs a finite tolerance > 0 and at least 1 iteration";
       return {StepStatus::kSolverFailed, message.str()};
     }
     return implicit_step(model, constraints, loads, settings, state);

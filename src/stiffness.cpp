@@ -38,13 +38,10 @@ int position_in(const std::vector<int>& sorted, int value) {
   return static_cast<int>(std::lower_bound(sorted.begin(), sorted.end(), value) - sorted.begin());
 }
 
-}  // namespace
-
-StiffnessAssembler::StiffnessAssembler(const Model& model) {
-  const int num_nodes = model.num_nodes();
-  // neighbours: the node itself, the other end of each spring, every node that shares a cell
-  std::vector<std::vector<int>> neighbours(num_nodes);
-  for (int n = 0; n < num_nodes; ++n) neighbours[n].push_back(n);
+// Per node, sorted: the node itself, the other end of each spring, every node that shares a cell.
+std::vector<std::vector<int>> sorted_neighbours(const Model& model) {
+  std::vector<std::vector<int>> neighbours(model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) neighbours[n].push_back(n);
   for (const auto& ends : model.spring_nodes) {
     neighbours[ends[0]].push_back(ends[1]);
     neighbours[ends[1]].push_back(ends[0]);
@@ -52,23 +49,29 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
   for (const auto& corners : model.cell_nodes) {
     for (int p : corners) neighbours[p].insert(neighbours[p].end(), corners.begin(), corners.end());
   }
-  std::size_t entries = 0;
   for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
-    entries += 9 * list.size();
   }
+  return neighbours;
+}
+
+// A 3x3 block of zeros for each node and each of its neighbours, compressed. The rows are written
+// in place, in order: a list of triplets (16 bytes an entry) and setFromTriplets' transposed copy
+// had tripled the memory (2.9 GB and 22 s for 64^3 cells).
+void build_pattern(const std::vector<std::vector<int>>& neighbours, SparseMatrix& pattern) {
+  const int num_nodes = static_cast<int>(neighbours.size());
+  std::size_t entries = 0;
+  for (const auto& list : neighbours) entries += 9 * list.size();
   if (entries > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw std::length_error("the stiffness matrix of " + std::to_string(num_nodes) + " nodes would hold " +
                             std::to_string(entries) + " entries, more than its int indices can address");
   }
-  // the rows written in place, in order: a list of triplets (16 bytes an entry) and
-  // setFromTriplets' transposed copy had tripled the memory (2.9 GB and 22 s for 64^3 cells)
-  pattern_.resize(3 * num_nodes, 3 * num_nodes);
-  pattern_.makeCompressed();
-  pattern_.resizeNonZeros(static_cast<Eigen::Index>(entries));
-  int* row_start = pattern_.outerIndexPtr();
-  int* column = pattern_.innerIndexPtr();
+  pattern.resize(3 * num_nodes, 3 * num_nodes);
+  pattern.makeCompressed();
+  pattern.resizeNonZeros(static_cast<Eigen::Index>(entries));
+  int* row_start = pattern.outerIndexPtr();
+  int* column = pattern.innerIndexPtr();
   int entry = 0;
   for (int n = 0; n < num_nodes; ++n) {
     for (int a = 0; a < 3; ++a) {
@@ -79,7 +82,15 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
     }
   }
   row_start[3 * num_nodes] = entry;
-  std::fill(pattern_.valuePtr(), pattern_.valuePtr() + pattern_.nonZeros(), 0.0);
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + pattern.nonZeros(), 0.0);
+}
+
+}  // namespace
+
+StiffnessAssembler::StiffnessAssembler(const Model& model) {
+  const int num_nodes = model.num_nodes();
+  const std::vector<std::vector<int>> neighbours = sorted_neighbours(model);
+  build_pattern(neighbours, pattern_);
 
   diagonal_position_.resize(num_nodes);
   for (int n = 0; n < num_nodes; ++n) diagonal_position_[n] = position_in(neighbours[n], n);
@@ -195,8 +206,7 @@ SparseMatrix StiffnessAssembler::assemble_once(const Model& model, const Eigen::
 
 void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
   if (!pattern_handed_over_) return;
-  StiffnessAssembler again(model);
-  pattern_.swap(again.pattern_);  // swapped: Eigen 3.4's SparseMatrix has no move
+  build_pattern(sorted_neighbours(model), pattern_);
   pattern_handed_over_ = false;
 }
 

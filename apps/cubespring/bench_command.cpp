@@ -129,7 +129,8 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   }
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
-    // the same steps on 1 and 2 threads (the same bits: the same CG iterations), interleaved
+    // steps from the same start on 1 and 2 threads, interleaved (each stepper takes as many steps
+    // as its batches need: CG it is the 1-thread stepper's)
     StepSettings settings;
     settings.integrator = Integrator::kImplicitEuler;
     settings.time_step = 1e-3;

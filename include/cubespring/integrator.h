@@ -29,7 +29,7 @@ struct StepSettings {
   double time_step = 1e-4;              ///< dt [s], > 0
   int threads = 1;                      ///< threads of the force passes and the implicit step's
                                         ///< conjugate gradients; results do not depend on it
-  double solver_tolerance = 1e-6;       ///< implicit: CG relative residual, > 0
+  double solver_tolerance = 1e-6;       ///< implicit: CG relative residual, finite and > 0
   int solver_max_iterations = 2000;     ///< implicit: CG iteration cap, >= 1 (a residual that turns
                                         ///< NaN stops CG before it: solver-failed)
   /// A node faster than this is taken as a blow-up [m/s]; 0 means 10 times the fastest pressure

@@ -495,7 +495,8 @@ TEST(Integrator, RefusesABadTimeStep) {
 
 TEST(Integrator, RefusesBadSolverSettings) {
   const Model model = test::box_model({1, 1, 1}, Material{});
-  for (const auto& [tolerance, iterations] : {std::pair{0.0, 10}, std::pair{1e-6, 0}, std::pair{std::nan(""), 10}}) {
+  for (const auto& [tolerance, iterations] : {std::pair{0.0, 10}, std::pair{1e-6, 0}, std::pair{std::nan(""), 10},
+                                         std::pair{std::numeric_limits<double>::infinity(), 10}}) {
     State state = rest_state(model);
     StepSettings settings;
     settings.integrator = Integrator::kImplicitEuler;
