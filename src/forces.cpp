@@ -139,6 +139,10 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * size.array()).inverse();
   const Eigen::Array3d tension_per_stress = size.prod() * inverse_edge_sum;
   const double crushed_volume = kCrushedVolumeFraction * size.prod();
+  // diagonal k's spring runs from corner k unless corner 7 - k comes first in node order
+  // (Model::major_axis): then its vector is the negative of corner 7 - k minus corner k
+  double diagonal_sign[4];
+  for (int k = 0; k < 4; ++k) diagonal_sign[k] = (k >> model.major_axis) & 1 ? -1.0 : 1.0;
   int crushed = 0;
   for (int c = begin; c < end; ++c) {
     const std::array<int, kEdgesPerCell>& edges = model.cell_edges[c];
@@ -158,10 +162,10 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
 
     // 4 x each mean edge vector, from the diagonals (corner 7 - k minus corner k)
     const std::array<int, 4>& diagonals = model.cell_diagonals[c];
-    const Eigen::Vector3d d0 = ws.spring_vector.col(diagonals[0]);
-    const Eigen::Vector3d d1 = ws.spring_vector.col(diagonals[1]);
-    const Eigen::Vector3d d2 = ws.spring_vector.col(diagonals[2]);
-    const Eigen::Vector3d d3 = ws.spring_vector.col(diagonals[3]);
+    const Eigen::Vector3d d0 = diagonal_sign[0] * ws.spring_vector.col(diagonals[0]);
+    const Eigen::Vector3d d1 = diagonal_sign[1] * ws.spring_vector.col(diagonals[1]);
+    const Eigen::Vector3d d2 = diagonal_sign[2] * ws.spring_vector.col(diagonals[2]);
+    const Eigen::Vector3d d3 = diagonal_sign[3] * ws.spring_vector.col(diagonals[3]);
     // s_a(7 - k) for k = 0..3: x: + - + -, y: + + - -, z: + + + +
     const Eigen::Vector3d edge_x = (d0 - d1) + (d2 - d3);
     const Eigen::Vector3d edge_y = (d0 + d1) - (d2 + d3);

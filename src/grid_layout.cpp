@@ -66,7 +66,11 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
     lower = lower.cwiseMin(cell);
     upper = upper.cwiseMax(cell);
   }
-  const Eigen::Vector3i cells = upper - lower + Eigen::Vector3i::Ones();
+  auto layout = std::make_shared<GridLayout>();
+  GridLayout& grid = *layout;
+  const int major = model.major_axis;
+  grid.model_axis = {(major + 1) % 3, (major + 2) % 3, major};
+  const Eigen::Vector3i cells = grid.grid_step(upper - lower + Eigen::Vector3i::Ones());
   const double box_cells = static_cast<double>(cells.x()) * cells.y() * cells.z();
   if (!(model.num_cells() >= min_fill * box_cells)) return nullptr;  // NaN: never
   // points are indexed by int, with a layer and a row of padding on each side (a sparse body's
@@ -75,11 +79,10 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   const double padded_points = points.prod() + 2.0 * (points.x() * points.y() + points.x() + 1.0);
   if (padded_points > static_cast<double>(std::numeric_limits<int>::max())) return nullptr;
 
-  auto layout = std::make_shared<GridLayout>();
-  GridLayout& grid = *layout;
   grid.first_node = lower;
   grid.points = cells + Eigen::Vector3i::Ones();
-  grid.cell_size = model.cell_size;
+  grid.cell_size = {model.cell_size[grid.model_axis.x()], model.cell_size[grid.model_axis.y()],
+                    model.cell_size[grid.model_axis.z()]};
   grid.stride_y = grid.points.x();
   grid.stride_z = grid.points.x() * grid.points.y();
   grid.num_points = grid.stride_z * grid.points.z();
@@ -90,14 +93,18 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   for (int z = 0; z < grid.points.z(); ++z) {
     for (int y = 0; y < grid.points.y(); ++y) {
       for (int x = 0; x < grid.points.x(); ++x) {
-        const Eigen::Vector3i index = lower + Eigen::Vector3i(x, y, z);
+        Eigen::Vector3i index = lower;
+        index[grid.model_axis.x()] += x;
+        index[grid.model_axis.y()] += y;
+        index[grid.model_axis.z()] += z;
         grid.rest_points.col(grid.point(index)) = model.origin + index.cast<double>().cwiseProduct(model.cell_size);
       }
     }
   }
   grid.point_of_node.resize(model.num_nodes());
   for (int n = 0; n < model.num_nodes(); ++n) grid.point_of_node[n] = grid.point(model.node_grid_index[n]);
-  // nodes come z-major, x fastest (model.cpp): a thread's layers hold a contiguous range of them
+  // nodes come in the grid's z-major order, x fastest (Model::major_axis): a thread's layers hold a
+  // contiguous range of them
   // (and the points of nodes strictly increase: the kick and copy-in rely on it)
   if (std::adjacent_find(grid.point_of_node.begin(), grid.point_of_node.end(), std::greater_equal<>()) !=
       grid.point_of_node.end()) {
@@ -110,7 +117,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
     if (f < kEdgeFamilies) {
       family.to = step_of_axis[f];
       family.to_corner = Eigen::Vector3i::Unit(f);
-      family.rest_length = model.cell_size[f];
+      family.rest_length = grid.cell_size[f];
       family.rows = f == 1 ? cells.y() : grid.points.y();
       family.slabs = f == 2 ? cells.z() : grid.points.z();
     } else {
@@ -130,7 +137,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   for (int s = 0; s < model.num_springs(); ++s) {
     const auto& ends = model.spring_nodes[s];
     const Eigen::Vector3i first = model.node_grid_index[ends[0]];
-    const int f = family_of_step(model.node_grid_index[ends[1]] - first);
+    const int f = family_of_step(grid.grid_step(model.node_grid_index[ends[1]] - first));
     if (f < 0) return nullptr;
     SpringFamily& family = grid.families[f];
     if (std::abs(model.spring_rest_length[s] - family.rest_length) > 1e-12 * family.rest_length) return nullptr;
@@ -149,7 +156,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   grid.cell_slabs = cells.z();
   for (int c = 0; c < model.num_cells(); ++c) {
     const int point = grid.point(model.cell_grid_index[c]);
-    const Eigen::Matrix3d& d = model.cell_correction[c];
+    const Eigen::Matrix3d d = model.cell_correction[c](grid.model_axis, grid.model_axis);
     // 6 coefficients are kept: a correction that is not symmetric (to rounding) stays on the lists
     if ((d - d.transpose()).cwiseAbs().maxCoeff() > 1e-12 * d.cwiseAbs().maxCoeff()) return nullptr;
     const double coefficients[6] = {d(0, 0), d(1, 1), d(2, 2), d(0, 1), d(0, 2), d(1, 2)};

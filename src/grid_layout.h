@@ -35,8 +35,12 @@ struct SpringFamily {
 inline constexpr int kEdgeFamilies = 3;
 inline constexpr int kSpringFamilies = 7;
 
+/// The grid's axes are the model's, turned so that the grid's z is Model::major_axis: the passes
+/// sweep z-layers, and the points follow the model's node order. Everything below is along the
+/// grid's x, y, z but for first_node, rest_points and the model's indices that point() takes.
 struct GridLayout {
-  Eigen::Vector3i first_node{0, 0, 0};  ///< grid index of point 0
+  Eigen::Vector3i model_axis{0, 1, 2};  ///< the model's axis along the grid's x, y, z (a cyclic turn)
+  Eigen::Vector3i first_node{0, 0, 0};  ///< the model's grid index of point 0
   Eigen::Vector3i points{0, 0, 0};      ///< grid points along x, y, z (cells + 1)
   Eigen::Vector3d cell_size{0, 0, 0};   ///< [m]
   int stride_y = 0, stride_z = 0;       ///< point index steps along y and z
@@ -63,9 +67,14 @@ struct GridLayout {
   double uniform_twist = 0.0;                  ///< [Pa]
   double uniform_beta = 0.0;                   ///< [s]
 
+  /// The point at a model's grid index.
   int point(const Eigen::Vector3i& index) const {
     const Eigen::Vector3i local = index - first_node;
-    return local.x() + stride_y * local.y() + stride_z * local.z();
+    return local[model_axis.x()] + stride_y * local[model_axis.y()] + stride_z * local[model_axis.z()];
+  }
+  /// A step along the model's axes as a step along the grid's.
+  Eigen::Vector3i grid_step(const Eigen::Vector3i& model_step) const {
+    return {model_step[model_axis.x()], model_step[model_axis.y()], model_step[model_axis.z()]};
   }
 };
 

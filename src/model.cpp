@@ -21,10 +21,36 @@ constexpr std::int64_t kAxisBits = 21;
 constexpr std::int64_t kAxisOffset = std::int64_t{1} << (kAxisBits - 1);
 constexpr int kMaxGridIndex = static_cast<int>(kAxisOffset) - 2;
 
-// z-major, x fastest, so that node order follows memory order of a box.
-std::int64_t grid_key(const Eigen::Vector3i& index) {
-  return ((index.z() + kAxisOffset) << (2 * kAxisBits)) | ((index.y() + kAxisOffset) << kAxisBits) |
-         (index.x() + kAxisOffset);
+// Keys sort major_axis-major, the axis after it fastest (Model::major_axis), so that node order
+// follows the memory order of a box's grid.
+std::int64_t grid_key(const Eigen::Vector3i& index, int major_axis) {
+  const int fast = (major_axis + 1) % 3, middle = (major_axis + 2) % 3;
+  return ((index[major_axis] + kAxisOffset) << (2 * kAxisBits)) | ((index[middle] + kAxisOffset) << kAxisBits) |
+         (index[fast] + kAxisOffset);
+}
+Eigen::Vector3i grid_index_of_key(std::int64_t key, int major_axis) {
+  const std::int64_t mask = (std::int64_t{1} << kAxisBits) - 1;
+  Eigen::Vector3i index;
+  index[(major_axis + 1) % 3] = static_cast<int>((key & mask) - kAxisOffset);
+  index[(major_axis + 2) % 3] = static_cast<int>(((key >> kAxisBits) & mask) - kAxisOffset);
+  index[major_axis] = static_cast<int>((key >> (2 * kAxisBits)) - kAxisOffset);
+  return index;
+}
+
+// The axis along which the cells' bounding box has the most nodes (z, then y, on a tie), if the
+// layers across it hold kMinMajorLayerNodes or more; else z (Model::major_axis).
+int choose_major_axis(const std::vector<Eigen::Vector3i>& cells) {
+  Eigen::Vector3i lower = cells.front(), upper = lower;
+  for (const Eigen::Vector3i& cell : cells) {
+    lower = lower.cwiseMin(cell);
+    upper = upper.cwiseMax(cell);
+  }
+  const Eigen::Vector3d nodes = (upper - lower).cast<double>().array() + 2.0;
+  int longest = 2;
+  for (int axis : {1, 0}) {
+    if (nodes[axis] > nodes[longest]) longest = axis;
+  }
+  return nodes.prod() / nodes[longest] >= kMinMajorLayerNodes ? longest : 2;
 }
 
 Status check_desc(const LatticeDesc& desc) {
@@ -70,7 +96,7 @@ struct EdgeRecord {
 }  // namespace
 
 int Model::node_at(const Eigen::Vector3i& grid_index) const {
-  const std::int64_t key = grid_key(grid_index);
+  const std::int64_t key = grid_key(grid_index, major_axis);
   auto it = std::lower_bound(sorted_node_keys_.begin(), sorted_node_keys_.end(), key);
   if (it == sorted_node_keys_.end() || *it != key) return -1;
   return static_cast<int>(it - sorted_node_keys_.begin());
@@ -92,6 +118,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
   model.cell_size = desc.cell_size;
   model.origin = desc.origin;
   model.materials = desc.materials;
+  model.major_axis = choose_major_axis(desc.cells);
+  const int major_axis = model.major_axis;
 
   // calibrate each material once for this cell shape
   std::vector<CellCalibration> calibrations;
@@ -106,7 +134,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   std::vector<int> cell_order(desc.cells.size());
   for (std::size_t c = 0; c < cell_order.size(); ++c) cell_order[c] = static_cast<int>(c);
   std::sort(cell_order.begin(), cell_order.end(),
-            [&](int a, int b) { return grid_key(desc.cells[a]) < grid_key(desc.cells[b]); });
+            [&](int a, int b) { return grid_key(desc.cells[a], major_axis) < grid_key(desc.cells[b], major_axis); });
   for (std::size_t c = 1; c < cell_order.size(); ++c) {
     if (desc.cells[cell_order[c]] == desc.cells[cell_order[c - 1]]) {
       std::ostringstream message;
@@ -119,18 +147,15 @@ Result<Model> build_model(const LatticeDesc& desc) {
   std::vector<std::int64_t>& keys = model.sorted_node_keys_;
   keys.reserve(cell_order.size() * 2);
   for (const Eigen::Vector3i& cell : desc.cells) {
-    for (int corner = 0; corner < kCornersPerCell; ++corner) keys.push_back(grid_key(cell + corner_offset(corner)));
+    for (int corner = 0; corner < kCornersPerCell; ++corner) keys.push_back(grid_key(cell + corner_offset(corner), major_axis));
   }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   const int num_nodes = static_cast<int>(keys.size());
   model.rest_positions.resize(3, num_nodes);
   model.node_grid_index.resize(num_nodes);
-  const std::int64_t mask = (std::int64_t{1} << kAxisBits) - 1;
   for (int n = 0; n < num_nodes; ++n) {
-    const Eigen::Vector3i index(static_cast<int>((keys[n] & mask) - kAxisOffset),
-                                static_cast<int>(((keys[n] >> kAxisBits) & mask) - kAxisOffset),
-                                static_cast<int>((keys[n] >> (2 * kAxisBits)) - kAxisOffset));
+    const Eigen::Vector3i index = grid_index_of_key(keys[n], major_axis);
     model.node_grid_index[n] = index;
     model.rest_positions.col(n) = desc.origin + index.cast<double>().cwiseProduct(desc.cell_size);
   }
@@ -198,12 +223,17 @@ Result<Model> build_model(const LatticeDesc& desc) {
     }
     springs.push_back(spring);
   }
-  // corner c (c < 4, z side 0) has a lower node index than corner 7 - c: node order is z-major
+  // a diagonal runs from its end with the lower node index, as every spring does
+  const auto diagonal_ends = [&](int c, int corner) {
+    const int a = model.cell_nodes[c][corner], b = model.cell_nodes[c][7 - corner];
+    return std::array<int, 2>{std::min(a, b), std::max(a, b)};
+  };
   for (int c = 0; c < num_cells; ++c) {
     const CellCalibration& calibration = calibrations[model.cell_material[c]];
     const Material& material = desc.materials[model.cell_material[c]];
     for (int corner = 0; corner < 4; ++corner) {
-      springs.push_back({model.cell_nodes[c][corner], model.cell_nodes[c][7 - corner], calibration.diagonal_stiffness,
+      const std::array<int, 2> ends = diagonal_ends(c, corner);
+      springs.push_back({ends[0], ends[1], calibration.diagonal_stiffness,
                          material.stiffness_damping * calibration.diagonal_stiffness, 0, 0});
     }
   }
@@ -235,7 +265,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   // diagonals of each cell, found by their end nodes
   for (int c = 0; c < num_cells; ++c) {
     for (int corner = 0; corner < 4; ++corner) {
-      const std::array<int, 2> ends{model.cell_nodes[c][corner], model.cell_nodes[c][7 - corner]};
+      const std::array<int, 2> ends = diagonal_ends(c, corner);
       const auto first = model.spring_nodes.begin();
       const auto it = std::lower_bound(first, model.spring_nodes.end(), ends);
       model.cell_diagonals[c][corner] = static_cast<int>(it - first);

@@ -64,6 +64,19 @@ struct Row {
   int implicit_iterations = 0;
 };
 
+// The positions of a box's nodes in the floor's order (x fastest, then y, then z), whatever
+// order the model numbers them in (Model::major_axis).
+Eigen::Matrix3Xd in_box_order(const Model& model, const Eigen::Vector3i& cells, const Eigen::Matrix3Xd& positions) {
+  Eigen::Vector3i first = model.node_grid_index.front();
+  for (const Eigen::Vector3i& index : model.node_grid_index) first = first.cwiseMin(index);
+  Eigen::Matrix3Xd ordered(3, model.num_nodes());
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3i i = model.node_grid_index[n] - first;
+    ordered.col(i.x() + (cells.x() + 1) * (i.y() + (cells.y() + 1) * i.z())) = positions.col(n);
+  }
+  return ordered;
+}
+
 // `box`: the body's cell counts when it is a box (for the floor with implicit connectivity).
 Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o, const Eigen::Vector3i* box = nullptr) {
   Result<Model> built = build_model(desc);
@@ -108,7 +121,7 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   if (box != nullptr) {
     const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
     if (!springs) throw std::runtime_error(springs.message());
-    floor = std::make_unique<GridSpringFloor>(*box, desc.cell_size.x(), start.positions,
+    floor = std::make_unique<GridSpringFloor>(*box, desc.cell_size.x(), in_box_order(model, *box, start.positions),
                                               springs.value().edge_stiffness.x(), springs.value().diagonal_stiffness);
     columns.push_back(std::ref(*floor));
   }

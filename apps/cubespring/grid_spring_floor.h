@@ -13,8 +13,9 @@ namespace cubespring::app {
 
 class GridSpringFloor {
  public:
-  /// A box of `cells` cubes of edge h [m] at `positions` (3 x nodes, x fastest, then y, then z:
-  /// the node order of a box model), edges of stiffness edge_k and body diagonals of diagonal_k [N/m].
+  /// A box of `cells` cubes of edge h [m] at `positions` (3 x nodes, x fastest, then y, then z;
+  /// a model may number them otherwise: Model::major_axis), edges of stiffness edge_k and body
+  /// diagonals of diagonal_k [N/m].
   GridSpringFloor(const Eigen::Vector3i& cells, double h, const Eigen::Matrix3Xd& positions, double edge_k,
                   double diagonal_k);
 

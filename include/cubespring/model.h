@@ -33,6 +33,13 @@ struct Model {
   Eigen::Vector3d origin{0, 0, 0};     ///< [m]
   std::vector<Material> materials;
 
+  /// Nodes (and cells) are numbered in the order of their grid index along major_axis, slowest,
+  /// then the axis after the next, then the axis after major_axis, fastest ((major_axis + 1) % 3;
+  /// the order keeps the axes' handedness): z-major with x fastest unless the body's bounding box
+  /// has more nodes along x or y than along z and its layers across that axis hold at least
+  /// kMinMajorLayerNodes nodes. The grid passes sweep their layers along it (docs/data-layout.md).
+  int major_axis = 2;
+
   // nodes (num_nodes)
   Eigen::Matrix3Xd rest_positions;       ///< (3 x num_nodes) [m]
   std::vector<Eigen::Vector3i> node_grid_index;  ///< grid index of each node
@@ -67,7 +74,8 @@ struct Model {
   /// Springs are sorted by their first node: those with spring_nodes[s][0] == n are
   /// node_first_spring[n] .. node_first_spring[n+1]-1 (num_nodes + 1 entries).
   std::vector<int> node_first_spring;
-  /// The 4 body diagonals of each cell, from corner c to corner 7 - c for c = 0..3.
+  /// The 4 body diagonals of each cell, between corner c and corner 7 - c for c = 0..3; each
+  /// spring runs from its end with the lower node index, corner c when major_axis is z.
   std::vector<std::array<int, 4>> cell_diagonals;
   bool has_stiffness_damping = false;  ///< some material has beta > 0
   bool has_mass_damping = false;       ///< some material has alpha > 0
@@ -109,6 +117,12 @@ Result<Model> build_model(const LatticeDesc& desc);
 /// the grid passes: from it the grid stepped every benched body faster, below it the spring lists
 /// stepped some faster (`cubespring bench-layout`, docs/data-layout.md).
 inline constexpr double kDefaultMinGridFill = 0.45;
+
+/// The fewest nodes a layer across the box's longest axis holds for build_model() to number the
+/// nodes along that axis (Model::major_axis): the grid passes split their layers between threads,
+/// and more, smaller layers balance them better, but a layer's loops cost a fixed time each, which
+/// shorter layers cannot repay (`docs/data-layout.md`).
+inline constexpr int kMinMajorLayerNodes = 256;
 
 /// Rebuilds model.grid_layout from the model's arrays, after a change to a built model's
 /// stiffnesses, damping or corrections. The grid is built when the cells fill at least min_fill

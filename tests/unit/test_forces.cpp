@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -217,7 +218,8 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
 // The grid passes (bodies that fill at least 45% of their bounding box) add the same springs,
 // correction, twist, damping and inversion recovery as the spring lists, to rounding: a box, a
 // box with holes and a stiff inclusion of another material, the same holes in one material, in
-// both models, each with a crushed cell and with a spring of zero length (no direction: no force).
+// both models, each with a crushed cell and with a spring of zero length (no direction: no force);
+// and boxes numbered along x (non-cubic cells, an inclusion) and y (exact-bending).
 TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
@@ -240,17 +242,27 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
   exact_holes.model = CellModel::kExactBending;
   LatticeDesc one_material_holes = holes;  // the grid's uniform coefficients, empty cells inside
   one_material_holes.cell_material.assign(holes.cells.size(), 0);
-  const std::vector<std::pair<const char*, LatticeDesc>> bodies{
-      {"box", box_lattice({7, 5, 4}, Eigen::Vector3d::Constant(0.01), damped)},
-      {"holes and inclusion", holes},
-      {"holes", one_material_holes},
-      {"exact-bending box", exact_box},
-      {"exact-bending holes and inclusion", exact_holes}};
-  for (const auto& [name, desc] : bodies) {
+  // bodies long enough along x or y to be numbered along it (Model::major_axis): the grid's axes
+  // turned, with cells of three sides and an inclusion
+  LatticeDesc along_x = box_lattice({20, 15, 15}, Eigen::Vector3d(0.01, 0.012, 0.008), damped);
+  along_x.materials.push_back(stiff);
+  for (const Eigen::Vector3i& cell : along_x.cells) along_x.cell_material.push_back(cell.y() < 5 ? 1 : 0);
+  LatticeDesc exact_along_y = box_lattice({15, 20, 15}, Eigen::Vector3d::Constant(0.01), damped);
+  exact_along_y.model = CellModel::kExactBending;
+  const std::vector<std::tuple<const char*, LatticeDesc, int>> bodies{
+      {"box", box_lattice({7, 5, 4}, Eigen::Vector3d::Constant(0.01), damped), 2},
+      {"holes and inclusion", holes, 2},
+      {"holes", one_material_holes, 2},
+      {"exact-bending box", exact_box, 2},
+      {"exact-bending holes and inclusion", exact_holes, 2},
+      {"box along x, inclusion", along_x, 0},
+      {"exact-bending box along y", exact_along_y, 1}};
+  for (const auto& [name, desc, major_axis] : bodies) {
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     const Model& grid = built.value();
     ASSERT_NE(grid.grid_layout, nullptr) << name;
+    ASSERT_EQ(grid.major_axis, major_axis) << name;
     Model lists = grid;
     lists.grid_layout.reset();
     for (const bool crushed : {false, true}) {
@@ -272,6 +284,54 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
         EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale)
             << name << (crushed ? ", crushed" : "") << (damping ? "" : ", no damping");
       }
+    }
+  }
+}
+
+// A box numbered along x (Model::major_axis) and its copy turned so that it is numbered along z
+// as before, x -> z, y -> x, z -> y (a rotation): in both models, damped, with a crushed cell
+// and gravity, the forces turn with the body, on 1 and 2 threads, to rounding.
+TEST(Forces, ABoxNumberedAlongXHasTheForcesOfItsTurnedCopy) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  damped.mass_damping = 2.0;
+  const auto turned = [](const Eigen::Vector3d& v) { return Eigen::Vector3d(v.y(), v.z(), v.x()); };
+  for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+    LatticeDesc along_x = box_lattice({20, 15, 15}, Eigen::Vector3d::Constant(0.01), damped);
+    along_x.model = cell_model;
+    LatticeDesc along_z = box_lattice({15, 15, 20}, Eigen::Vector3d::Constant(0.01), damped);
+    along_z.model = cell_model;
+    Result<Model> built_x = build_model(along_x), built_z = build_model(along_z);
+    ASSERT_TRUE(built_x.ok() && built_z.ok());
+    const Model& model_x = built_x.value();
+    const Model& model_z = built_z.value();
+    ASSERT_EQ(model_x.major_axis, 0);
+    ASSERT_EQ(model_z.major_axis, 2);
+    ASSERT_NE(model_x.grid_layout, nullptr);
+    ASSERT_NE(model_z.grid_layout, nullptr);
+    const State state_x = disturbed_state(model_x, true);
+    State state_z = rest_state(model_z);
+    std::vector<int> turned_node(model_x.num_nodes());
+    for (int n = 0; n < model_x.num_nodes(); ++n) {
+      const Eigen::Vector3i& index = model_x.node_grid_index[n];
+      turned_node[n] = model_z.node_at({index.y(), index.z(), index.x()});
+      ASSERT_GE(turned_node[n], 0);
+      state_z.positions.col(turned_node[n]) = turned(state_x.positions.col(n));
+      state_z.velocities.col(turned_node[n]) = turned(state_x.velocities.col(n));
+    }
+    Loads loads_x, loads_z;
+    loads_x.gravity = {0, 0, -9.81};
+    loads_z.gravity = turned(loads_x.gravity);
+    for (const int threads : {1, 2}) {
+      ForceWorkspace ws_x, ws_z;
+      Eigen::Matrix3Xd forces_x, forces_z;
+      compute_forces(model_x, state_x, loads_x, ForceOptions{true, threads}, ws_x, forces_x);
+      compute_forces(model_z, state_z, loads_z, ForceOptions{true, threads}, ws_z, forces_z);
+      double worst = 0.0;
+      for (int n = 0; n < model_x.num_nodes(); ++n) {
+        worst = std::max(worst, (turned(forces_x.col(n)) - forces_z.col(turned_node[n])).cwiseAbs().maxCoeff());
+      }
+      EXPECT_LT(worst, 1e-12 * forces_z.cwiseAbs().maxCoeff()) << cell_model_name(cell_model) << ", " << threads;
     }
   }
 }
@@ -328,26 +388,29 @@ TEST(Forces, GridPassesTakeAChangedDiagonalOrCell) {
 // The grid passes cut the z-layers of cells into one chunk per thread (at most one per 1024
 // points and per layer of cells); a chunk recomputes the spring forces of the layer below its
 // first in its own ring of layers. Any thread count gives the same bits, and the lists' forces
-// to rounding: a plate of 3 layers of cells (16384 points: with 3 or 4 threads, chunks of 2
+// to rounding: a plate of 3 layers of cells (16128 points: with 3 or 4 threads, chunks of 2
 // layers, 1 layer, and the top layer of points alone, which recompute the layers below theirs),
-// in the exact-bending model, and a box of 14 layers (9375 points: 2, 3 and 4 chunks) in both
-// models, each with a crushed cell.
+// in the exact-bending model, and a box of 24 x 24 x 14 cells (9375 points: 2, 3 and 4 chunks),
+// numbered along y (Model::major_axis: 25 layers of 25 x 15 points) in both models, each with a
+// crushed cell.
 TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
-  LatticeDesc plate = box_lattice({63, 63, 3}, Eigen::Vector3d::Constant(0.01), damped);
+  // layers across x would hold 63 x 4 points, too few to number the nodes along x
+  LatticeDesc plate = box_lattice({63, 62, 3}, Eigen::Vector3d::Constant(0.01), damped);
   plate.model = CellModel::kExactBending;
   LatticeDesc exact_box = box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped);
   exact_box.model = CellModel::kExactBending;
-  const std::vector<std::pair<const char*, LatticeDesc>> bodies{
-      {"exact-bending plate", plate},
-      {"box", box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped)},
-      {"exact-bending box", exact_box}};
-  for (const auto& [name, desc] : bodies) {
+  const std::vector<std::tuple<const char*, LatticeDesc, int>> bodies{
+      {"exact-bending plate", plate, 2},
+      {"box", box_lattice({24, 24, 14}, Eigen::Vector3d::Constant(0.01), damped), 1},
+      {"exact-bending box", exact_box, 1}};
+  for (const auto& [name, desc, major_axis] : bodies) {
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     const Model& grid = built.value();
     ASSERT_NE(grid.grid_layout, nullptr) << name;
+    ASSERT_EQ(grid.major_axis, major_axis) << name;
     Model lists = grid;
     lists.grid_layout.reset();
     const State state = disturbed_state(grid, true);
@@ -366,31 +429,32 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
 }
 
 // The threads' shares of the grid's layers move towards the thread that took less time
-// (GridSplit); any split gives the same bits. A box of 14 layers of cells (15 of points) on 2
-// threads: splits of 1 layer against 14, 13 against 2 and the top layer of points alone give one
-// thread's forces; a split that does not fit the grid is made even; and from 1 layer against 14
-// (or 14 against the top layer of points) the boundary moves by 2 layers at least in 6 rounds of
+// (GridSplit); any split gives the same bits. A box of 24 layers of cells (25 of points) on 2
+// threads: splits of 1 layer against 24, 23 against 2 and the top layer of points alone give one
+// thread's forces; a split that does not fit the grid is made even; and from 1 layer against 24
+// (or 24 against the top layer of points) the boundary moves by 2 layers at least in 6 rounds of
 // timed calls. Given one thread of the two planned (in a nested region), it does every layer.
 TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
-  const Model model = test::box_model({24, 24, 14}, notes_material(0.3));
+  const Model model = test::box_model({14, 24, 24}, notes_material(0.3));
   ASSERT_NE(model.grid_layout, nullptr);
+  ASSERT_EQ(model.major_axis, 2);  // 25 z-layers of points
   const State state = disturbed_state(model, true);
   Loads loads;
   loads.gravity = {0, 0, -9.81};
   ForceWorkspace ws;
   Eigen::Matrix3Xd one, two;
   compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
-  for (const std::vector<int>& split : {std::vector<int>{0, 1, 15}, {0, 13, 15}, {0, 14, 15}}) {
+  for (const std::vector<int>& split : {std::vector<int>{0, 1, 25}, {0, 23, 25}, {0, 24, 25}}) {
     ws.grid_split = GridSplit{split, {}, 0};
     compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
     ASSERT_EQ(ws.grid_split.first_layers, split);  // used as it was
     EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0) << split[1];
   }
-  ws.grid_split = GridSplit{{0, 15, 15}, {}, 0};  // the second thread without a layer
+  ws.grid_split = GridSplit{{0, 25, 25}, {}, 0};  // the second thread without a layer
   compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
   ASSERT_EQ(ws.grid_split.first_layers.size(), 3u);
-  EXPECT_GT(ws.grid_split.first_layers[1], 4);
-  EXPECT_LT(ws.grid_split.first_layers[1], 10);
+  EXPECT_GT(ws.grid_split.first_layers[1], 8);
+  EXPECT_LT(ws.grid_split.first_layers[1], 17);
   EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
 
 #ifdef _OPENMP
@@ -400,7 +464,7 @@ TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
 #pragma omp parallel num_threads(2)
   {
     ForceWorkspace own;
-    own.grid_split = GridSplit{{0, 1, 15}, {}, 0};
+    own.grid_split = GridSplit{{0, 1, 25}, {}, 0};
     compute_forces(model, state, loads, ForceOptions{true, 2}, own, nested[omp_get_thread_num()]);
   }
   for (const Eigen::Matrix3Xd& forces : nested) {
@@ -408,8 +472,8 @@ TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
     EXPECT_EQ(std::memcmp(one.data(), forces.data(), sizeof(double) * one.size()), 0) << "nested";
   }
 #endif
-  for (const int boundary : {1, 14}) {  // the upper thread, then the lower, far the slower
-    ws.grid_split = GridSplit{{0, boundary, 15}, {}, 0};
+  for (const int boundary : {1, 24}) {  // the upper thread, then the lower, far the slower
+    ws.grid_split = GridSplit{{0, boundary, 25}, {}, 0};
     for (int call = 0; call < 6 * 8; ++call) compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
     EXPECT_GE(std::abs(ws.grid_split.first_layers[1] - boundary), 2) << boundary;
     EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);

@@ -1,5 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
+#include <algorithm>
+#include <array>
+#include <tuple>
+
 #include <gtest/gtest.h>
 
 #include "cubespring/model.h"
@@ -97,6 +101,41 @@ TEST(Model, AnyCellSetSharesNodes) {
   ASSERT_TRUE(model.ok()) << model.message();
   EXPECT_EQ(model->num_nodes(), 16);
   EXPECT_EQ(model->node_at({2, 2, 0}), -1);
+}
+
+// Nodes are numbered along the axis the box is longest along (Model::major_axis) when the layers
+// across it hold at least kMinMajorLayerNodes nodes, else along z; the axis after the major one
+// is the fastest. Whatever the order, node_at finds every node, every spring runs from its lower
+// node index to its higher, and a cell's diagonal k joins its corners k and 7 - k.
+TEST(Model, NodesAreNumberedAlongTheLongAxisOfABigEnoughBox) {
+  struct Case {
+    Eigen::Vector3i cells;
+    int major_axis;
+  };
+  // 21 x 16 x 16 nodes: layers across x of 256; 21 x 16 x 15: of 240, too few; ties go to z, then y
+  for (const Case& c : {Case{{20, 15, 15}, 0}, Case{{20, 15, 14}, 2}, Case{{15, 20, 15}, 1},
+                        Case{{15, 15, 20}, 2}, Case{{20, 20, 15}, 1}, Case{{20, 20, 20}, 2}}) {
+    const Model model = test::box_model(c.cells, Material{});
+    ASSERT_EQ(model.major_axis, c.major_axis) << c.cells.transpose();
+    const int fast = (c.major_axis + 1) % 3, middle = (c.major_axis + 2) % 3;
+    const auto order = [&](const Eigen::Vector3i& index) {
+      return std::make_tuple(index[c.major_axis], index[middle], index[fast]);
+    };
+    for (int n = 0; n < model.num_nodes(); ++n) {
+      ASSERT_EQ(model.node_at(model.node_grid_index[n]), n);
+      if (n > 0) {
+        ASSERT_LT(order(model.node_grid_index[n - 1]), order(model.node_grid_index[n])) << n;
+      }
+    }
+    for (const auto& ends : model.spring_nodes) ASSERT_LT(ends[0], ends[1]);
+    for (int cell = 0; cell < model.num_cells(); cell += 97) {
+      for (int k = 0; k < 4; ++k) {
+        std::array<int, 2> corners{model.cell_nodes[cell][k], model.cell_nodes[cell][7 - k]};
+        std::sort(corners.begin(), corners.end());
+        EXPECT_EQ(model.spring_nodes[model.cell_diagonals[cell][k]], corners) << cell << ", " << k;
+      }
+    }
+  }
 }
 
 }  // namespace
