@@ -21,13 +21,19 @@ void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorksp
 
 /// One kick-drift of every node, v' = v + kick M^-1 f, x' = x + drift v', from `from` into `to`
 /// (a different State): kick and drift [s]. The nodes that `driven` (constraints of this model)
-/// drives then reach their target instead, over `drift` (drive_nodes.h).
+/// drives then reach their target instead, from their position in drive_start (null: `from`)
+/// over drive_step [s] (0: `drift`; drive_nodes.h).
 struct KickDrift {
   double kick = 0.0;
   double drift = 0.0;
   const State* from = nullptr;
   State* to = nullptr;
   const Constraints* driven = nullptr;
+  const State* drive_start = nullptr;
+  double drive_step = 0.0;
+
+  const State& start_of_drive() const { return drive_start != nullptr ? *drive_start : *from; }
+  double step_of_drive() const { return drive_step > 0.0 ? drive_step : drift; }
 };
 
 /// compute_forces() followed by the kick-drift, each node moved as soon as its force is complete

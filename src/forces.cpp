@@ -500,7 +500,7 @@ double compute_forces_and_kick(const Model& model, const State& state, const Loa
         to.positions.col(n) = from.positions.col(n) + kick.drift * v;
         double speed_sq =
             to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
-        if (kick.driven != nullptr && !drive_node(*kick.driven, kick.drift, from, to, n)) {
+        if (kick.driven != nullptr && !drive_node(*kick.driven, kick.step_of_drive(), kick.start_of_drive(), to, n)) {
           speed_sq = std::numeric_limits<double>::quiet_NaN();
         }
         return speed_sq;

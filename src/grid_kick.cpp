@@ -93,7 +93,7 @@ double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const dou
   assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const double fastest_sq = kick_nodes_of_kind(kick, point_of_node, spring_force, begin, end, forces);
   const KickDrift& k = kick.kick;
-  if (k.driven != nullptr && !drive_nodes(*k.driven, k.drift, *k.from, *k.to, begin, end)) {
+  if (k.driven != nullptr && !drive_nodes(*k.driven, k.step_of_drive(), k.start_of_drive(), *k.to, begin, end)) {
     return std::numeric_limits<double>::quiet_NaN();
   }
   return fastest_sq;

@@ -83,22 +83,6 @@ StepReport Stepper::check(const Model& model, const StepSettings& settings, doub
   return {};
 }
 
-// One kick-drift sweep over the nodes: v' = v0 + kick M^-1 f, x' = x0 + drift v'. Returns the
-// largest squared speed, NaN if any velocity is not finite. (The first kick of a step is fused
-// with the force pass: compute_forces_and_kick.)
-double kick_drift(const Model& model, const Eigen::Matrix3Xd& forces, double kick, double drift,
-                  const State& from, State& to) {
-  double fastest_sq = 0.0;
-  for (int n = 0; n < model.num_nodes(); ++n) {
-    const Eigen::Vector3d v = from.velocities.col(n) + (kick / model.mass[n]) * forces.col(n);
-    to.velocities.col(n) = v;
-    to.positions.col(n) = from.positions.col(n) + drift * v;
-    const double speed_sq = v.squaredNorm();
-    fastest_sq = faster(speed_sq, fastest_sq);
-  }
-  return fastest_sq;
-}
-
 StepReport Stepper::explicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                                   const StepSettings& settings, State& state) {
   const double dt = settings.time_step;
@@ -118,22 +102,26 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
     }
   } else {
     // half kick and drift, then a half kick with the force at the new positions (its damping
-    // taken at the half-step velocity)
-    const int driven_range = constraints.num_nodes();
+    // taken at the half-step velocity), fused with that force pass like the first: each thread
+    // kicks and drives its own nodes (both drive from the step's start over dt)
+    const bool kick_drives = constraints.num_nodes() == model.num_nodes();
+    const Constraints* driven = kick_drives ? &constraints : nullptr;
     (void)compute_forces_and_kick(model, state, loads, options, workspace_, forces_,
-                                  KickDrift{0.5 * dt, dt, &state, &candidate_});
-    (void)drive_nodes(constraints, dt, state, candidate_, 0, driven_range);  // checked by the second drive
-    compute_forces(model, candidate_, loads, options, workspace_, forces_);
-    fastest_sq = kick_drift(model, forces_, 0.5 * dt, 0.0, candidate_, candidate_);
-    if (!drive_nodes(constraints, dt, state, candidate_, 0, driven_range)) {
+                                  KickDrift{0.5 * dt, dt, &state, &candidate_, driven});
+    if (!kick_drives) (void)drive_nodes(constraints, dt, state, candidate_, 0, constraints.num_nodes());
+    // into a third state: the kick reads the half-step state while it writes (x' = x + 0 v')
+    if (half_step_end_.positions.cols() != model.num_nodes()) half_step_end_ = state;
+    fastest_sq = compute_forces_and_kick(model, candidate_, loads, options, workspace_, forces_,
+                                         KickDrift{0.5 * dt, 0.0, &candidate_, &half_step_end_, driven, &state, dt});
+    if (!kick_drives && !drive_nodes(constraints, dt, state, half_step_end_, 0, constraints.num_nodes())) {
       fastest_sq = std::numeric_limits<double>::quiet_NaN();
     }
+    std::swap(candidate_, half_step_end_);
   }
   candidate_.time = state.time + dt;
-  // the symplectic kick checked the positions it made (driven nodes' targets are finite); a
-  // serial sweep here would also pull every position into this thread's cache
-  const bool positions_checked = settings.integrator == Integrator::kSymplecticEuler;
-  StepReport report = check(model, settings, std::sqrt(fastest_sq), candidate_, positions_checked);
+  // the kick checked the positions it made (driven nodes' targets are finite); a serial sweep
+  // here would also pull every position into this thread's cache
+  StepReport report = check(model, settings, std::sqrt(fastest_sq), candidate_, true);
   if (report.ok()) std::swap(state, candidate_);
   return report;
 }

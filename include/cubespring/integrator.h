@@ -82,6 +82,7 @@ class Stepper {
   ForceWorkspace workspace_;
   Eigen::Matrix3Xd forces_;
   State candidate_;
+  State half_step_end_;  // velocity Verlet's second half kick writes here (it reads candidate_)
   std::unique_ptr<StiffnessAssembler> assembler_;  // built on the first implicit step
   SparseMatrix system_;
 };
