@@ -12,8 +12,16 @@
 #include "conjugate_gradient.h"
 #include "drive_nodes.h"
 #include "force_passes.h"
+#include "thread_shares.h"
 
 namespace cubespring {
+namespace {
+
+// Below this many nodes a thread's share of the implicit system's set-up costs more in entering a
+// parallel region than it saves.
+constexpr int kMinNodesPerThread = 1024;
+
+}  // namespace
 
 const char* integrator_name(Integrator integrator) {
   switch (integrator) {
@@ -142,42 +150,46 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   }
 
   compute_forces(model, state, loads, ForceOptions{false, settings.threads}, workspace_, forces_);
-  assembler_->assemble(model, state.positions, StiffnessKind::kPositiveSemiDefinite, dt * dt, dt, system_);
+  assembler_->assemble(model, state.positions, StiffnessKind::kPositiveSemiDefinite, dt * dt, dt, system_,
+                       settings.threads);
 
   Eigen::VectorXd rhs(3 * num_nodes);
   Eigen::VectorXd guess(3 * num_nodes);
   std::vector<std::uint8_t> driven(3 * num_nodes, 0);
-  for (int n = 0; n < num_nodes; ++n) {
-    const double mass = model.mass[n];
-    const double mass_term = mass + dt * model.mass_damping[n];
-    for (int a = 0; a < 3; ++a) {
-      rhs[3 * n + a] = mass * state.velocities(a, n) + dt * forces_(a, n);
-      guess[3 * n + a] = state.velocities(a, n);
-    }
-    // the mass sits on the diagonal block's own entries
-    const int* outer = system_.outerIndexPtr();
-    const int* inner = system_.innerIndexPtr();
-    double* values = system_.valuePtr();
-    for (int a = 0; a < 3; ++a) {
-      const int row = 3 * n + a;
-      const int* hit = std::lower_bound(inner + outer[row], inner + outer[row + 1], row);
-      values[hit - inner] += mass_term;
-    }
-    if (n < constraints.num_nodes() && constraints.is_driven(n)) {
-      const Eigen::Vector3d velocity = (constraints.target(n) - state.positions.col(n)) / dt;
+  const int* outer = system_.outerIndexPtr();
+  const int* inner = system_.innerIndexPtr();
+  double* values = system_.valuePtr();
+  // the threads share the nodes, then (once every driven velocity is known) their rows: each
+  // entry is changed by one thread, the same way on any thread count
+  run_shares(std::min(settings.threads, num_nodes / kMinNodesPerThread), [&](int share, int shares,
+                                                                            const auto& barrier) {
+    const auto node = [&](int k) { return static_cast<int>(static_cast<long long>(num_nodes) * k / shares); };
+    const int first = node(share), end = node(share + 1);
+    for (int n = first; n < end; ++n) {
+      const double mass = model.mass[n];
+      const double mass_term = mass + dt * model.mass_damping[n];
       for (int a = 0; a < 3; ++a) {
-        driven[3 * n + a] = 1;
-        guess[3 * n + a] = velocity[a];
+        rhs[3 * n + a] = mass * state.velocities(a, n) + dt * forces_(a, n);
+        guess[3 * n + a] = state.velocities(a, n);
+      }
+      // the mass sits on the diagonal block's own entries
+      for (int a = 0; a < 3; ++a) {
+        const int row = 3 * n + a;
+        const int* hit = std::lower_bound(inner + outer[row], inner + outer[row + 1], row);
+        values[hit - inner] += mass_term;
+      }
+      if (n < constraints.num_nodes() && constraints.is_driven(n)) {
+        const Eigen::Vector3d velocity = (constraints.target(n) - state.positions.col(n)) / dt;
+        for (int a = 0; a < 3; ++a) {
+          driven[3 * n + a] = 1;
+          guess[3 * n + a] = velocity[a];
+        }
       }
     }
-  }
-
-  // eliminate driven unknowns: move their columns to the right-hand side, identity rows
-  if (constraints.num_driven() > 0) {
-    const int* outer = system_.outerIndexPtr();
-    const int* inner = system_.innerIndexPtr();
-    double* values = system_.valuePtr();
-    for (int row = 0; row < 3 * num_nodes; ++row) {
+    if (constraints.num_driven() == 0) return;
+    barrier();
+    // eliminate driven unknowns: move their columns to the right-hand side, identity rows
+    for (int row = 3 * first; row < 3 * end; ++row) {
       for (int e = outer[row]; e < outer[row + 1]; ++e) {
         const int col = inner[e];
         if (driven[row]) {
@@ -189,7 +201,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
       }
       if (driven[row]) rhs[row] = guess[row];
     }
-  }
+  });
 
   Eigen::VectorXd& velocity = guess;  // solved in place
   const ConjugateGradientResult solved = conjugate_gradient(

@@ -17,10 +17,14 @@
 #include "cell_geometry.h"
 #include "cubespring/forces.h"
 #include "force_passes.h"
+#include "thread_shares.h"
 #include "twist.h"
 
 namespace cubespring {
 namespace {
+
+// Below this many nodes a thread's rows cost more in entering a parallel region than they save.
+constexpr int kMinNodesPerThread = 1024;
 
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
@@ -100,6 +104,11 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
     const int j = model.spring_nodes[s][1];
     spring_position_[s] = {position_in(neighbours[i], j), position_in(neighbours[j], i)};
   }
+  for (const auto& ends : model.spring_nodes) spring_span_ = std::max(spring_span_, ends[1] - ends[0]);
+  for (const auto& corners : model.cell_nodes) {
+    const auto [lowest, highest] = std::minmax_element(corners.begin(), corners.end());
+    cell_span_ = std::max(cell_span_, *highest - *lowest);
+  }
   positive_correction_.resize(model.num_cells());
   for (int c = 0; c < model.num_cells(); ++c) positive_correction_[c] = positive_part(model.cell_correction[c]);
   cell_position_.resize(model.num_cells());
@@ -113,8 +122,9 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
   }
 }
 
-void StiffnessAssembler::add_block(SparseMatrix& matrix, int row_node, int position,
+void StiffnessAssembler::add_block(SparseMatrix& matrix, const NodeRows& rows, int row_node, int position,
                                    const Eigen::Matrix3d& block) const {
+  if (!rows.has(row_node)) return;  // another thread's row
   const int* outer = matrix.outerIndexPtr();
   double* values = matrix.valuePtr();
   for (int a = 0; a < 3; ++a) {
@@ -128,7 +138,7 @@ void StiffnessAssembler::add_block(SparseMatrix& matrix, int row_node, int posit
 // grad_k w = sum_side s (alpha_k c + kappa_k a) / h^2 and hess_km w = sum_side s (alpha_k kappa_m +
 // kappa_k alpha_m) I / h^2; the approximation keeps only the Gauss-Newton part grad w grad w^T.
 void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact, double k,
-                                   SparseMatrix& matrix) const {
+                                   const NodeRows& rows, SparseMatrix& matrix) const {
   const double h = model.cell_size.x();
   std::array<Eigen::Vector3d, kEdgesPerCell> edges;
   for (int e = 0; e < kEdgesPerCell; ++e) {
@@ -177,21 +187,21 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
           }
           block.diagonal().array() += scale * w * curvature / (h * h);
         }
-        add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+        add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
       }
     }
   }
 }
 
 void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
-                                  double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
+                                  double stiffness_scale, double damping_scale, SparseMatrix& matrix, int threads) {
   rebuild_pattern_if_handed_over(model);
   if (matrix.nonZeros() != pattern_.nonZeros() || matrix.rows() != pattern_.rows()) {
     matrix = pattern_;
   } else {
     std::fill(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), 0.0);
   }
-  add_values(model, x, kind, stiffness_scale, damping_scale, matrix);
+  add_values(model, x, kind, stiffness_scale, damping_scale, matrix, threads);
 }
 
 SparseMatrix StiffnessAssembler::assemble_once(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
@@ -200,7 +210,7 @@ SparseMatrix StiffnessAssembler::assemble_once(const Model& model, const Eigen::
   SparseMatrix matrix;
   matrix.swap(pattern_);  // its values are zeros (swapped: Eigen 3.4's SparseMatrix has no move)
   pattern_handed_over_ = true;
-  add_values(model, x, kind, stiffness_scale, damping_scale, matrix);
+  add_values(model, x, kind, stiffness_scale, damping_scale, matrix, 1);
   return matrix;
 }
 
@@ -211,32 +221,58 @@ void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
 }
 
 void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
-                                    double stiffness_scale, double damping_scale, SparseMatrix& matrix) {
-  const bool exact = kind == StiffnessKind::kExact;
-  ForceWorkspace& ws = tensions_;
-  measure_tensions(model, x, ws);
+                                    double stiffness_scale, double damping_scale, SparseMatrix& matrix,
+                                    int threads) {
+  measure_tensions(model, x, tensions_);
+  const int num_nodes = model.num_nodes();
+  // each thread the rows of a range of nodes, from the springs and cells that reach them taken
+  // in the order one thread takes them: every entry sums the same terms in the same order
+  run_shares(std::min(threads, num_nodes / kMinNodesPerThread), [&](int share, int shares, const auto&) {
+    const auto node = [&](int k) { return static_cast<int>(static_cast<long long>(num_nodes) * k / shares); };
+    add_rows(model, x, kind, stiffness_scale, damping_scale, NodeRows{node(share), node(share + 1)}, matrix);
+  });
+}
 
-  // springs: material and geometric parts
-  for (int s = 0; s < model.num_springs(); ++s) {
+void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
+                                  double stiffness_scale, double damping_scale, const NodeRows& rows,
+                                  SparseMatrix& matrix) const {
+  const bool exact = kind == StiffnessKind::kExact;
+  const ForceWorkspace& ws = tensions_;
+
+  // springs: material and geometric parts; those that reach the rows start at most spring_span_
+  // nodes before them (springs are sorted by their first node)
+  const int first_spring = model.node_first_spring[std::max(0, rows.begin - spring_span_)];
+  const int spring_end = model.node_first_spring[rows.end];
+  for (int s = first_spring; s < spring_end; ++s) {
     const double length = ws.spring_length[s];
     if (length <= 0.0) continue;
     const int i = model.spring_nodes[s][0];
     const int j = model.spring_nodes[s][1];
+    if (!rows.has(i) && !rows.has(j)) continue;
     const Eigen::Vector3d n = (x.col(j) - x.col(i)) / length;
     const Eigen::Matrix3d nn = n * n.transpose();
     const double tension = exact ? ws.spring_tension[s] : std::max(ws.spring_tension[s], 0.0);
     const Eigen::Matrix3d block =
         (stiffness_scale * model.spring_stiffness[s] + damping_scale * model.spring_damping[s]) * nn +
         (stiffness_scale * tension / length) * (Eigen::Matrix3d::Identity() - nn);
-    add_block(matrix, i, diagonal_position_[i], block);
-    add_block(matrix, j, diagonal_position_[j], block);
-    add_block(matrix, i, spring_position_[s][0], -block);
-    add_block(matrix, j, spring_position_[s][1], -block);
+    add_block(matrix, rows, i, diagonal_position_[i], block);
+    add_block(matrix, rows, j, diagonal_position_[j], block);
+    add_block(matrix, rows, i, spring_position_[s][0], -block);
+    add_block(matrix, rows, j, spring_position_[s][1], -block);
   }
 
-  // cells: correction material part and inversion recovery
+  // cells: correction material part and inversion recovery; those that reach the rows have their
+  // corner 0 (their lowest node: cells come in node order) at most cell_span_ nodes before them
   const double rest_volume = model.rest_cell_volume();
-  for (int c = 0; c < model.num_cells(); ++c) {
+  const auto corner_0_below = [&](int node) {
+    const auto below = [node](const std::array<int, kCornersPerCell>& corners) { return corners[0] < node; };
+    return static_cast<int>(std::partition_point(model.cell_nodes.begin(), model.cell_nodes.end(), below) -
+                            model.cell_nodes.begin());
+  };
+  const int cell_end = corner_0_below(rows.end);
+  for (int c = corner_0_below(rows.begin - cell_span_); c < cell_end; ++c) {
+    const auto& corners = model.cell_nodes[c];
+    if (std::none_of(corners.begin(), corners.end(), [&](int n) { return rows.has(n); })) continue;
     const Eigen::Matrix3d& d = exact ? model.cell_correction[c] : positive_correction_[c];
     const double beta = model.materials[model.cell_material[c]].stiffness_damping;
     const Eigen::Matrix3d weighted = rest_volume * (stiffness_scale + damping_scale * beta) * d;
@@ -255,13 +291,13 @@ void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& 
     for (int p = 0; p < kCornersPerCell; ++p) {
       const Eigen::Matrix3d left = strain_gradient[p] * weighted;
       for (int q = 0; q < kCornersPerCell; ++q) {
-        add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q],
+        add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q],
                   left * strain_gradient[q].transpose());
       }
     }
 
     if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
-      add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], matrix);
+      add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], rows, matrix);
     }
 
     const CellFrame frame = cell_frame(model, x, c);
@@ -289,7 +325,7 @@ void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& 
             }
           }
         }
-        add_block(matrix, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+        add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
       }
     }
   }

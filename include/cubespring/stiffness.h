@@ -38,8 +38,10 @@ class StiffnessAssembler {
   /// solver report that as their failure.
   explicit StiffnessAssembler(const Model& model);
 
+  /// `threads` share the rows (from 1024 nodes a thread); the matrix has the same bits on any
+  /// thread count.
   void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,
-                double stiffness_scale, double damping_scale, SparseMatrix& matrix);
+                double stiffness_scale, double damping_scale, SparseMatrix& matrix, int threads = 1);
 
   /// The same matrix, assembled into the pattern itself rather than a copy of it: for a caller
   /// that needs one matrix (the stable-step helper), one copy of the matrix in memory instead of
@@ -53,11 +55,19 @@ class StiffnessAssembler {
 
  private:
   void rebuild_pattern_if_handed_over(const Model& model);
+  // The rows of nodes [begin, end): one thread's part of the matrix.
+  struct NodeRows {
+    int begin = 0, end = 0;
+    bool has(int node) const { return node >= begin && node < end; }
+  };
   void add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind, double stiffness_scale,
-                  double damping_scale, SparseMatrix& matrix);
-  void add_block(SparseMatrix& matrix, int row_node, int position, const Eigen::Matrix3d& block) const;
+                  double damping_scale, SparseMatrix& matrix, int threads);
+  void add_rows(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind, double stiffness_scale,
+                double damping_scale, const NodeRows& rows, SparseMatrix& matrix) const;
+  void add_block(SparseMatrix& matrix, const NodeRows& rows, int row_node, int position,
+                 const Eigen::Matrix3d& block) const;
   void add_twist(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness,
-                 SparseMatrix& matrix) const;
+                 const NodeRows& rows, SparseMatrix& matrix) const;
 
   SparseMatrix pattern_;
   bool pattern_handed_over_ = false;                      // by assemble_once
@@ -65,6 +75,8 @@ class StiffnessAssembler {
   std::vector<std::array<int, 2>> spring_position_;      // per spring: j in row i, i in row j
   std::vector<std::array<int, 64>> cell_position_;       // per cell: corner q in row of corner p
   std::vector<Eigen::Matrix3d> positive_correction_;      // per cell: PSD part of D
+  int spring_span_ = 0;  // the most nodes between a spring's two ends
+  int cell_span_ = 0;    // the most nodes between a cell's lowest and highest corner
   ForceWorkspace tensions_;  // the springs' and cells' tensions at the positions, kept: an implicit
                              // step or Newton iteration allocates no per-spring arrays
 };

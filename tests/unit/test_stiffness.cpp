@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The stiffness matrix against finite differences of the forces, and the zero-energy modes.
+#include <cstring>
 #include <set>
 #include <utility>
 
@@ -95,6 +96,38 @@ TEST(Stiffness, AssemblingAgainGivesWhatANewAssemblerGives) {
     SparseMatrix after;  // the pattern handed over is built again
     reused.assemble(model, x, kind, 1.0, 0.0, after);  // NOLINT(bugprone-use-after-move)
     EXPECT_EQ(Eigen::MatrixXd(after), Eigen::MatrixXd(fresh));
+  }
+}
+
+// Threads share the matrix's rows by ranges of nodes (from 1024 nodes a thread), each adding the
+// terms of the springs and cells that reach its rows in the order one thread adds them: 1, 2 and
+// 3 threads give the same bits, in both kinds, with stiffness damping, on a body numbered along
+// x (Model::major_axis) in the exact-bending model with a crushed cell (its twist and inversion
+// terms across the threads' boundaries too).
+TEST(Stiffness, AnyThreadCountAssemblesTheSameBits) {
+  Material damped = test::notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  LatticeDesc desc = box_lattice({20, 15, 15}, Eigen::Vector3d::Constant(0.01), damped);
+  desc.model = CellModel::kExactBending;
+  Result<Model> built = build_model(desc);
+  ASSERT_TRUE(built.ok()) << built.message();
+  const Model& model = built.value();
+  ASSERT_EQ(model.major_axis, 0);
+  ASSERT_GE(model.num_nodes(), 3 * 1024);
+  Eigen::Matrix3Xd x = test::perturbed(model, 1e-3);
+  const int middle = model.num_cells() / 2;  // crushed, near where 2 threads' rows meet
+  for (int corner = 4; corner < 8; ++corner) x(2, model.cell_nodes[middle][corner]) -= 0.015;
+  ASSERT_LT(cell_signed_volume(model, x, middle), 0.0);
+  for (const StiffnessKind kind : {StiffnessKind::kExact, StiffnessKind::kPositiveSemiDefinite}) {
+    StiffnessAssembler assembler(model);
+    SparseMatrix one, many;
+    assembler.assemble(model, x, kind, 1.0, 0.01, one, 1);
+    for (const int threads : {2, 3}) {
+      assembler.assemble(model, x, kind, 1.0, 0.01, many, threads);
+      ASSERT_EQ(many.nonZeros(), one.nonZeros());
+      EXPECT_EQ(std::memcmp(one.valuePtr(), many.valuePtr(), sizeof(double) * one.nonZeros()), 0)
+          << threads << " threads, kind " << static_cast<int>(kind);
+    }
   }
 }
 
