@@ -8,7 +8,10 @@
 namespace cubespring {
 namespace {
 
-constexpr char kMagic[8] = {'C', 'U', 'B', 'E', 'S', 'T', 'A', '1'};
+constexpr char kMagic[8] = {'C', 'U', 'B', 'E', 'S', 'T', 'A', '2'};
+// Files of the first format came from builds that numbered every body's nodes z-major: they hold
+// the nodes in this build's order only for a body that is still z-major (Model::major_axis).
+constexpr char kZMajorMagic[8] = {'C', 'U', 'B', 'E', 'S', 'T', 'A', '1'};
 
 bool same_bits(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
   return a.cols() == b.cols() &&
@@ -69,8 +72,14 @@ Result<State> load_state(const Model& model, const std::string& path) {
   std::int64_t num_nodes = 0;
   in.read(magic, sizeof(magic));
   in.read(reinterpret_cast<char*>(&num_nodes), sizeof(num_nodes));
-  if (!in || std::memcmp(magic, kMagic, sizeof(kMagic)) != 0) {
+  const bool z_major_file = in && std::memcmp(magic, kZMajorMagic, sizeof(kZMajorMagic)) == 0;
+  if (!in || (std::memcmp(magic, kMagic, sizeof(kMagic)) != 0 && !z_major_file)) {
     return Status::error(path + ": not a cubespring state file (bad header)");
+  }
+  if (z_major_file && model.major_axis != 2) {
+    return Status::error(path + ": the state was saved by an earlier version, which numbered the nodes z-major; " +
+                         "this body's nodes are numbered along " + "xyz"[model.major_axis] +
+                         " now (Model::major_axis), so the file's nodes would land on the wrong ones");
   }
   if (num_nodes != model.num_nodes()) {
     return Status::error(path + ": the state has " + std::to_string(num_nodes) +

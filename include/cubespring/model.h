@@ -38,6 +38,8 @@ struct Model {
   /// the order keeps the axes' handedness): z-major with x fastest unless the body's bounding box
   /// has more nodes along x or y than along z and its layers across that axis hold at least
   /// kMinMajorLayerNodes nodes. The grid passes sweep their layers along it (docs/data-layout.md).
+  /// Set by build_model(), read-only after it: node_at(), the forces and the grid follow it.
+  /// Find nodes by node_at() or node_grid_index, not by a formula of the grid index.
   int major_axis = 2;
 
   // nodes (num_nodes)

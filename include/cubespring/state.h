@@ -34,7 +34,9 @@ Eigen::Matrix3Xd displacements(const Model& model, const State& state);
 std::uint64_t state_hash(const State& state);
 
 /// Saves the state bit for bit (binary, little-endian doubles as in memory) and loads it back.
-/// load_state checks the header and that the node count matches the model.
+/// load_state checks the header and that the node count matches the model; it refuses a file of
+/// the first format (saved before nodes were numbered along a body's long axis) for a body that is
+/// not numbered z-major (Model::major_axis), whose nodes that file holds in another order.
 Status save_state(const State& state, const std::string& path);
 Result<State> load_state(const Model& model, const std::string& path);
 

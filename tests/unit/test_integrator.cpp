@@ -419,10 +419,10 @@ void expect_every_step_is_forces_then_kicks(Integrator integrator) {
   ASSERT_LT(holed.value().num_nodes(), 7 * 6 * 5);
   expect_step_is_forces_then_kick(holed.value(), Constraints(holed.value()), Loads{}, wobbling_block(holed.value()),
                                   0.5 * max_stable_time_step(holed.value()), 1, "holes");
-  // a body whose grid passes take 1-3 threads (13125 points, 20 layers of cells), each kicking and
-  // driving its share of the nodes (a clamped face through every layer, a moved top); with a
-  // cell crushed in the first or the last thread's layers, its corners' kick is redone with the
-  // recovery
+  // a body whose grid passes take 1-3 threads (13125 points, numbered along y: 24 layers of
+  // cells), each kicking and driving its share of the nodes (a clamped face through every layer,
+  // a moved top); with a cell crushed in the first or the last thread's layers, its corners'
+  // kick is redone with the recovery
   Material damped = test::notes_material(0.3);
   damped.mass_damping = 5.0;
   const Model large = test::box_model({24, 24, 20}, damped);

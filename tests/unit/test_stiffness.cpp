@@ -102,7 +102,7 @@ TEST(Stiffness, AssemblingAgainGivesWhatANewAssemblerGives) {
 // Threads share the matrix's rows by ranges of nodes (from 1024 nodes a thread), each adding the
 // terms of the springs and cells that reach its rows in the order one thread adds them: 1, 2 and
 // 3 threads give the same bits, in both kinds, with stiffness damping, on a body numbered along
-// x (Model::major_axis) in the exact-bending model with a crushed cell (its twist and inversion
+// x (Model::major_axis) in the exact-bending model with crushed cells (their twist and inversion
 // terms across the threads' boundaries too).
 TEST(Stiffness, AnyThreadCountAssemblesTheSameBits) {
   Material damped = test::notes_material(0.3);
@@ -115,9 +115,11 @@ TEST(Stiffness, AnyThreadCountAssemblesTheSameBits) {
   ASSERT_EQ(model.major_axis, 0);
   ASSERT_GE(model.num_nodes(), 3 * 1024);
   Eigen::Matrix3Xd x = test::perturbed(model, 1e-3);
-  const int middle = model.num_cells() / 2;  // crushed, near where 2 threads' rows meet
-  for (int corner = 4; corner < 8; ++corner) x(2, model.cell_nodes[middle][corner]) -= 0.015;
-  ASSERT_LT(cell_signed_volume(model, x, middle), 0.0);
+  // crushed cells near where 2 and 3 threads' rows meet
+  for (const int crushed : {model.num_cells() / 3, model.num_cells() / 2, 2 * model.num_cells() / 3}) {
+    for (int corner = 4; corner < 8; ++corner) x(2, model.cell_nodes[crushed][corner]) -= 0.015;
+    ASSERT_LT(cell_signed_volume(model, x, crushed), 0.0);
+  }
   for (const StiffnessKind kind : {StiffnessKind::kExact, StiffnessKind::kPositiveSemiDefinite}) {
     StiffnessAssembler assembler(model);
     SparseMatrix one, many;
