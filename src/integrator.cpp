@@ -15,13 +15,6 @@
 #include "thread_shares.h"
 
 namespace cubespring {
-namespace {
-
-// Below this many nodes a thread's share of the implicit system's set-up costs more in entering a
-// parallel region than it saves.
-constexpr int kMinNodesPerThread = 1024;
-
-}  // namespace
 
 const char* integrator_name(Integrator integrator) {
   switch (integrator) {
@@ -163,8 +156,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   // entry is changed by one thread, the same way on any thread count
   run_shares(std::min(settings.threads, num_nodes / kMinNodesPerThread), [&](int share, int shares,
                                                                             const auto& barrier) {
-    const auto node = [&](int k) { return static_cast<int>(static_cast<long long>(num_nodes) * k / shares); };
-    const int first = node(share), end = node(share + 1);
+    const auto [first, end] = equal_share(num_nodes, share, shares);
     for (int n = first; n < end; ++n) {
       const double mass = model.mass[n];
       const double mass_term = mass + dt * model.mass_damping[n];

@@ -23,9 +23,6 @@
 namespace cubespring {
 namespace {
 
-// Below this many nodes a thread's rows cost more in entering a parallel region than they save.
-constexpr int kMinNodesPerThread = 1024;
-
 Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
   Eigen::Matrix3d m;
   m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
@@ -228,8 +225,8 @@ void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& 
   // each thread the rows of a range of nodes, from the springs and cells that reach them taken
   // in the order one thread takes them: every entry sums the same terms in the same order
   run_shares(std::min(threads, num_nodes / kMinNodesPerThread), [&](int share, int shares, const auto&) {
-    const auto node = [&](int k) { return static_cast<int>(static_cast<long long>(num_nodes) * k / shares); };
-    add_rows(model, x, kind, stiffness_scale, damping_scale, NodeRows{node(share), node(share + 1)}, matrix);
+    const ShareRange nodes = equal_share(num_nodes, share, shares);
+    add_rows(model, x, kind, stiffness_scale, damping_scale, NodeRows{nodes.begin, nodes.end}, matrix);
   });
 }
 

@@ -8,6 +8,19 @@
 
 namespace cubespring {
 
+/// Below this many nodes a thread's share of node-by-node work (the implicit step's assembly and
+/// set-up) costs more in entering a parallel region than it saves.
+inline constexpr int kMinNodesPerThread = 1024;
+
+/// Items [begin, end) of `items` cut into `shares` equal ranges: range `share`.
+struct ShareRange {
+  int begin = 0, end = 0;
+};
+inline ShareRange equal_share(int items, int share, int shares) {
+  const auto bound = [&](int k) { return static_cast<int>(static_cast<long long>(items) * k / shares); };
+  return {bound(share), bound(share + 1)};
+}
+
 /// Runs work(share, shares, barrier) on `threads` threads, share in [0, shares), where barrier()
 /// waits for every share. One thread runs it outside any parallel region, with a barrier that
 /// does nothing: entering a region, even for one thread, and its barriers cost about 9 us a step,
