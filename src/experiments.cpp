@@ -5,6 +5,7 @@
 #include "cubespring/experiments.h"
 
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "cubespring/constraints.h"
@@ -45,6 +46,14 @@ Status check_settings(const ExperimentSettings& s) {
     std::ostringstream message;
     message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z()
             << ": every count must be >= 1";
+    return Status::error(message.str());
+  }
+  // before box_lattice() lists them
+  const std::uint64_t count = static_cast<std::uint64_t>(s.cells.x()) * static_cast<std::uint64_t>(s.cells.y()) *
+                              static_cast<std::uint64_t>(s.cells.z());
+  if (Status size = check_lattice_size(count); !size) {
+    std::ostringstream message;
+    message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z() << ": " << size.message();
     return Status::error(message.str());
   }
   if (!std::isfinite(s.strain) || s.strain <= 0.0 || s.strain > 0.5) {
@@ -128,6 +137,10 @@ const char* shear_control_name(ShearControl control) {
 
 Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings) {
   if (Status status = check_settings(settings); !status) return status;
+  if (experiment == Experiment::kCantilever && settings.gravity == 0.0) {
+    // no load: no deflection to compare, and 0 / 0 for its error
+    return Status::error("gravity = 0 m/s^2: the cantilever's only load; must be > 0");
+  }
   LatticeDesc desc = box_lattice(settings.cells, settings.cell_size, settings.material);
   desc.model = settings.model;
   desc.exact_bending = settings.exact_bending;

@@ -61,6 +61,14 @@ Status check_desc(const LatticeDesc& desc) {
   }
   if (!desc.origin.allFinite()) return Status::error("origin is not finite");
   if (desc.cells.empty()) return Status::error("the lattice has no cells");
+  if (Status size = check_lattice_size(desc.cells.size()); !size) return Status::error("the lattice has " + size.message());
+  // the cell volume and the stiffnesses come from products of the sizes
+  if (!std::isnormal(desc.cell_size.prod())) {
+    std::ostringstream message;
+    message << "cell_size = (" << desc.cell_size.transpose() << ") m: the cell volume " << desc.cell_size.prod()
+            << " m^3 is out of the range of double";
+    return Status::error(message.str());
+  }
   if (desc.materials.empty()) return Status::error("the lattice has no material");
   for (std::size_t m = 0; m < desc.materials.size(); ++m) {
     if (Status status = validate(desc.materials[m]); !status) {

@@ -22,7 +22,7 @@ std::vector<std::string> split(const std::string& text) {
 
 Result<Eigen::Vector3i> parse_counts(const std::string& flag, const std::string& text) {
   const std::vector<std::string> parts = split(text);
-  const std::string expected = flag + " " + text + ": expected three whole numbers >= 1, as NX,NY,NZ";
+  const std::string expected = flag + " " + text + ": expected three whole numbers from 1 to 100000, as NX,NY,NZ";
   if (parts.size() != 3) return Status::error(expected);
   Eigen::Vector3i counts;
   for (int i = 0; i < 3; ++i) {

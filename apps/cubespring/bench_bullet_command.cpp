@@ -48,6 +48,7 @@
 #include "arguments.h"
 #include "bench_support.h"
 #include "commands.h"
+#include "json_output.h"
 #include "cubespring/constraints.h"
 #include "cubespring/experiments.h"
 #include "cubespring/integrator.h"
@@ -620,7 +621,7 @@ int run_bench_bullet(const BenchBulletOptions& o) {
                      {"threads", r.threads},
                      {"status", r.status}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
   print_table(rows, summaries, o);

@@ -17,6 +17,7 @@
 #include "bench_support.h"
 #include "commands.h"
 #include "grid_spring_floor.h"
+#include "json_output.h"
 #include "number_checks.h"
 #include "step_timing.h"
 #include "cubespring/constraints.h"
@@ -202,7 +203,7 @@ int run_bench(const BenchOptions& o) {
                      {"implicit_cg_iterations", r.implicit_iterations},
                      {"implicit_wall_per_simulated_second_s", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
   std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"

@@ -16,6 +16,7 @@
 
 #include "bench_support.h"
 #include "commands.h"
+#include "json_output.h"
 #include "number_checks.h"
 #include "step_timing.h"
 #include "cubespring/model.h"
@@ -152,7 +153,7 @@ int run_bench_layout(const LayoutOptions& o) {
                      {"grid_ms", {{"1", 1e3 * r.grid[0]}, {"2", 1e3 * r.grid[1]}}},
                      {"default_layout", r.default_grid ? "grid" : "lists"}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
   std::printf("Hollow balls of %d cells across (1 cm cells, E = 1 MPa, nu = 0.3, clamped, gravity): symplectic Euler\n"

@@ -20,6 +20,7 @@
 #include "bench_support.h"
 #include "commands.h"
 #include "default_scene.h"
+#include "json_output.h"
 #include "number_checks.h"
 #include "scene_frames.h"
 #include "scene_run.h"
@@ -163,7 +164,7 @@ int run(const BenchRenderOptions& o) {
                                {"fps", 1.0 / t.draw_seconds},
                                {"fps_with_png", 1.0 / (t.draw_seconds + t.png_seconds)}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
   std::printf("%s: %d cells, %d nodes, sub-step %.3g ms; %s\n", scene.source.c_str(), organ.cells, organ.nodes,

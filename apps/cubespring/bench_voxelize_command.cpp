@@ -28,6 +28,7 @@
 
 #include "bench_support.h"
 #include "commands.h"
+#include "json_output.h"
 #include "step_timing.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/shapes.h"
@@ -303,7 +304,7 @@ int run_bench_voxelize(const BenchVoxelizeOptions& o) {
                      {"cells", r.cells},
                      {"relative_volume_difference", r.relative_volume_difference}});
     }
-    std::cout << out.dump(2) << "\n";
+    std::cout << json_text(out) << "\n";
     return 0;
   }
   print_table(rows, o);

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 // cubespring: calibrated soft-tissue simulation from the command line.
 #include <iostream>
+#include <exception>
 #include <map>
 
 #include "commands.h"
@@ -41,13 +42,20 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   }
-  for (auto& [name, run] : commands) {
-    if (app.got_subcommand(name)) return run();
-  }
+  // the commands report bad input themselves; what escapes them (memory exhausted, say) still
+  // ends as one line and a non-zero exit, not an abort
+  try {
+    for (auto& [name, run] : commands) {
+      if (app.got_subcommand(name)) return run();
+    }
 #ifdef CUBESPRING_HAS_DEMO
-  return commands["run"]();  // no subcommand: the default scene (the surgical demo)
+    return commands["run"]();  // no subcommand: the default scene (the surgical demo)
 #else
-  std::cout << app.help();
-  return 0;
+    std::cout << app.help();
+    return 0;
 #endif
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
 }

@@ -10,6 +10,7 @@
 
 #include "arguments.h"
 #include "commands.h"
+#include "json_output.h"
 #include "number_checks.h"
 #include "cubespring/experiments.h"
 #include "cubespring/fem_comparison.h"
@@ -178,7 +179,8 @@ std::string with_flag(const std::string& message) {
   const std::pair<const char*, const char*> flags[] = {
       {"young_modulus", "--young"}, {"poisson_ratio", "--poisson"}, {"density", "--density"},
       {"strain", "--strain"},       {"gravity", "--gravity"},       {"cell size", "--cell-size"},
-      {"edge_fraction", "--edge-fraction"}, {"twist_factor", "--twist-factor"}};
+      {"edge_fraction", "--edge-fraction"}, {"twist_factor", "--twist-factor"}, {"cells = ", "--cells"},
+      {"cell_size", "--cell-size"}};
   for (const auto& [field, flag] : flags) {
     if (message.find(field) != std::string::npos) return std::string(flag) + ": " + message;
   }
@@ -241,7 +243,7 @@ int run_measure(const MeasureOptions& o) {
     nlohmann::json report = report_json(result.value());
     if (comparison) report["reference"] = reference_json(o.reference, *comparison);
     if (!o.png.empty()) report["png"] = o.png;
-    std::cout << report.dump(2) << "\n";
+    std::cout << json_text(report) << "\n";
   } else {
     report_table(result.value());
     if (comparison) reference_table(o.reference, *comparison);

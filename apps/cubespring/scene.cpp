@@ -232,6 +232,32 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
   return fields.positive("strain_range", render.strain_range);
 }
 
+
+// The run counts its steps and frames in int and lists the frames: a time step longer than the
+// story, or so short or a frame rate so high that the counts pass what it can hold, is refused
+// (it would give one frame of step 0 repeated, or overflow the counts).
+Status check_counts(const JsonFields& fields, const Scene& scene) {
+  constexpr double kMaxSteps = 1e9, kMaxFrames = 1e6;
+  const auto text = [](double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  };
+  if (scene.time_step > scene.duration) {
+    return fields.error("time_step", "of " + text(scene.time_step) + " s is longer than the scene's duration of " +
+                                         text(scene.duration) + " s");
+  }
+  if (scene.duration / scene.time_step > kMaxSteps || scene.settle_time / scene.time_step > kMaxSteps) {
+    return fields.error("time_step", "of " + text(scene.time_step) + " s gives more than " + text(kMaxSteps) +
+                                         " steps over the settle time and duration of " +
+                                         text(scene.settle_time) + " s and " + text(scene.duration) + " s");
+  }
+  if (scene.frames == 0 && scene.duration * scene.frame_rate + 1.0 > kMaxFrames) {
+    return fields.error("frame_rate", "of " + text(scene.frame_rate) + " frames/s gives more than " + text(kMaxFrames) +
+                                          " frames over the duration of " + text(scene.duration) + " s");
+  }
+  return {};
+}
 Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& scene) {
   if (Status s = fields.check_keys({"organ", "table", "tools", "gravity", "integrator", "time_step", "settle_time",
                                     "duration", "frame_rate", "frames", "render", "output"});
@@ -284,6 +310,7 @@ Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& 
   if (fields.has("frames") && fields.has("frame_rate")) return fields.error("frames", "and \"frame_rate\" are both given: give one");
   if (Status s = fields.positive("frame_rate", scene.frame_rate); !s) return s;
   if (Status s = fields.integer("frames", scene.frames, 1, 1000000); !s) return s;
+  if (Status s = check_counts(fields, scene); !s) return s;
   if (fields.has("render")) {
     Result<JsonFields> render = fields.object("render");
     if (!render) return render.status();

@@ -11,6 +11,7 @@
 
 #include "arguments.h"
 #include "commands.h"
+#include "json_output.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/voxelize.h"
 
@@ -152,7 +153,7 @@ int run_voxelize(const VoxelizeCommandOptions& options) {
     return 2;
   }
   if (options.json) {
-    std::cout << report_json(options, *voxels).dump(2) << "\n";
+    std::cout << json_text(report_json(options, *voxels)) << "\n";
   } else {
     print_report(options, *mesh, *voxels);
   }
@@ -177,9 +178,19 @@ Command add_voxelize_command(CLI::App& app) {
   cmd->add_option("--rule", options->rule, "which boundary cells are in: centre (the centre is inside) or fraction")
       ->check(CLI::IsMember({"centre", "fraction"}))
       ->capture_default_str();
+  // checked here, so that the error names the flag before the mesh is read
+  const CLI::Validator in_unit_interval(
+      [](std::string& text) {
+        double value = 0.0;
+        const bool ok = CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= 1.0;
+        return ok ? std::string() : "must be in (0, 1], got " + text;
+      },
+      "in (0, 1]");
   cmd->add_option("--min-fraction", options->min_fraction, "rule fraction: the covered fraction a cell needs, in (0, 1]")
+      ->check(in_unit_interval)
       ->capture_default_str();
   cmd->add_option("--samples", options->samples, "rule fraction: samples per cell along each axis, 1..8")
+      ->check(CLI::Range(1, 8))
       ->capture_default_str();
   cmd->add_flag("--drop-islands", options->drop_islands, "keep only the largest face-connected piece of cells");
   cmd->add_option("--max-memory", options->max_memory, "refuse grids whose estimate exceeds BYTES (default: half "

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <sstream>
 
@@ -243,6 +244,14 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
         << describe_vector(result.cell_size) << " m needs about " << estimate / 1e6
         << " MB, over the memory limit of " << static_cast<double>(limit) / 1e6
         << " MB: use a larger cell size or fewer cells across (or raise the limit)";
+    return Status::error(out.str());
+  }
+  // the grid's cells and samples are indexed by int
+  if (grid_cells * samples_per_cell > static_cast<double>(std::numeric_limits<int>::max())) {
+    std::ostringstream out;
+    out << "a grid of " << span.x() << " x " << span.y() << " x " << span.z() << " cells of "
+        << describe_vector(result.cell_size) << " m with " << samples_per_cell
+        << " samples a cell has more than 2^31 samples: use a larger cell size or fewer cells across";
     return Status::error(out.str());
   }
   result.grid_size = span.cast<int>();

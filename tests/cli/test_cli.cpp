@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 #include <utility>
@@ -150,6 +152,24 @@ TEST(Cli, VoxelizeReportsPartsVolumesCountsAndProblems) {
   EXPECT_NEAR(h, 0.22 / 40, 1e-6);
 }
 
+// A part name in Latin-1 ("Leber_gr\xfcn", as older tools write OBJ files) is not UTF-8: the JSON
+// still comes out whole, the byte replaced by U+FFFD, instead of the tool aborting halfway.
+TEST(Cli, VoxelizeJsonTakesANameThatIsNotUtf8) {
+  const std::filesystem::path obj = std::filesystem::temp_directory_path() / "cubespring_latin1_cube.obj";
+  {
+    std::ofstream out(obj, std::ios::binary);
+    out << "o Leber_gr\xfcn\n";
+    for (const char* v : {"0 0 0", "0.1 0 0", "0.1 0.1 0", "0 0.1 0", "0 0 0.1", "0.1 0 0.1", "0.1 0.1 0.1", "0 0.1 0.1"}) {
+      out << "v " << v << "\n";
+    }
+    out << "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";  // outward
+  }
+  const nlohmann::json j = run_json("voxelize " + obj.string() + " --cells-across 4");
+  std::filesystem::remove(obj);
+  ASSERT_EQ(j["parts"].size(), 1u);
+  EXPECT_EQ(j["parts"][0]["name"], "Leber_gr\xef\xbf\xbdn");
+}
+
 TEST(Cli, VoxelizeTableNamesTheParts) {
   const ToolRun run = run_tool("voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.01");
   EXPECT_EQ(run.exit_code, 0) << run.out;
@@ -269,6 +289,11 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadArgument{"measure twist", "twist"}, BadArgument{"measure elongation --poisson 0.5", "--poisson"},
                       BadArgument{"measure elongation --young 0", "--young"},
                       BadArgument{"measure elongation --cells 0,1,1", "--cells"},
+                      // 1e15 cells: more than int indices address; 1e8: more memory than the machine has
+                      BadArgument{"measure elongation --cells 100000,100000,100000", "--cells"},
+                      BadArgument{"measure elongation --cells 500,500,400", "memory limit"},
+                      BadArgument{"measure elongation --cell-size 1e-120", "--cell-size"},
+                      BadArgument{"measure cantilever --gravity 0", "--gravity"},
                       BadArgument{"measure elongation --yung 1e6", "--yung"},
                       BadArgument{"measure elongation --cell-size -0.01", "--cell-size"},
                       BadArgument{"measure cantilever --cells 16,4", "--cells"},
@@ -292,6 +317,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --scale -2", "-2"},
                       BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.0001 --max-memory 1000000",
                                   "memory limit"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.mtl", "liver.mtl"}));
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.mtl", "liver.mtl"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --min-fraction 2",
+                                  "--min-fraction"},
+                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --samples 9", "--samples"},
+                      BadArgument{"measure elongation --cells 200000,1,1", "from 1 to 100000"}));
 
 }  // namespace

@@ -2,11 +2,14 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <string>
 #include <tuple>
 
 #include <gtest/gtest.h>
 
 #include "cubespring/model.h"
+#include "cubespring/voxelize.h"
 #include "test_support.h"
 
 namespace cubespring {
@@ -91,6 +94,27 @@ TEST(Model, RejectsBadDescriptions) {
   Result<Model> missing = build_model(desc);
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.message().find("material 3"), std::string::npos);
+
+  // sides each fine, but a cell volume of 1e-360 m^3 underflows to 0
+  desc = box_lattice({1, 1, 1}, Eigen::Vector3d::Constant(1e-120), Material{});
+  Result<Model> vanishing = build_model(desc);
+  ASSERT_FALSE(vanishing.ok());
+  EXPECT_NE(vanishing.message().find("out of the range of double"), std::string::npos) << vanishing.message();
+}
+
+// Bodies too large to build are refused by their cell count before anything is allocated: past
+// the int indices of their springs, or past a memory limit (the estimate of voxelize.h).
+TEST(Model, RefusesALatticeTooLargeToBuild) {
+  EXPECT_TRUE(check_lattice_size(1000).ok());
+  const Status past_int = check_lattice_size(kMaxCells + 1);
+  ASSERT_FALSE(past_int.ok());
+  EXPECT_NE(past_int.message().find("at most " + std::to_string(kMaxCells)), std::string::npos) << past_int.message();
+  const std::uint64_t thousand_cells = estimate_body_bytes(1000, 1000, 7000);
+  EXPECT_TRUE(check_lattice_size(1000, thousand_cells).ok());
+  const Status over = check_lattice_size(1001, thousand_cells);
+  ASSERT_FALSE(over.ok());
+  EXPECT_NE(over.message().find("1001 cells take about"), std::string::npos) << over.message();
+  EXPECT_NE(over.message().find("memory limit"), std::string::npos) << over.message();
 }
 
 TEST(Model, AnyCellSetSharesNodes) {

@@ -308,6 +308,10 @@ TEST(Voxelize, RefusesBadInputWithTheValueAtFault) {
   VoxelizeOptions absurd = cell_size(1e-9);
   absurd.max_memory_bytes = ~std::uint64_t{0};
   EXPECT_FALSE(voxelize(sphere, absurd).ok());
+  // 1336^3 cells, each axis short of the bound: more than int indices address, whatever the limit
+  VoxelizeOptions past_int = cell_size(0.0015);
+  past_int.max_memory_bytes = ~std::uint64_t{0};
+  EXPECT_NE(error(sphere, past_int).find("more than 2^31 samples"), std::string::npos) << error(sphere, past_int);
   // thinner than a cell
   EXPECT_NE(error(box_mesh(Eigen::Vector3d(0.01, 0.01, 0.01), Eigen::Vector3d(0.5, 0.5, 0.04)), cell_size(0.1))
                 .find("thinner than a cell"),
