@@ -164,6 +164,22 @@ TEST(BulletWorld, AnchoredBlockHangsAndFallsWhenDetached) {
   EXPECT_FALSE(soft->detach(*anchor).ok());
 }
 
+// One world step of 10^4 s would take about 10^8 of the block's sub-steps: the body stops at
+// once, saying why, instead of stepping for hours.
+TEST(BulletWorld, AWorldStepOfTooManySubStepsStopsTheBody) {
+  BulletScene scene;
+  bullet::SoftBody* soft = scene.add_soft(block({2, 2, 2}, kCell, tissue()));
+  ASSERT_NE(soft, nullptr);
+  ASSERT_LT(soft->sub_step(), 1e-2);
+  const State before = soft->state();
+  scene.world().stepSimulation(1e4, 0);  // no fixed steps: one step of the whole time
+  const std::string error = scene.world().getSoftBodyError();
+  EXPECT_NE(error.find("sub-steps of"), std::string::npos) << error;
+  EXPECT_NE(error.find("step the world in shorter steps"), std::string::npos) << error;
+  EXPECT_FALSE(soft->last_report().ok());
+  EXPECT_TRUE(soft->state() == before);
+}
+
 TEST(BulletWorld, AnUnstableBodyStopsAndResetsToAStateSavedBefore) {
   BulletScene scene;
   scene.add_floor();

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 
 #include <LinearMath/btTransformUtil.h>
 
@@ -180,7 +181,19 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     if (body.anchors_[a]) anchor_track[a] = track_of(tracks, body.anchors_[a]->body, constrained_);
   }
 
-  const int substeps = std::max(1, static_cast<int>(std::ceil(step_length / body.sub_step_ - 1e-9)));
+  // a world step so long against the body's sub-step that it would run for hours (or pass int)
+  // stops the body instead, saying why
+  constexpr double kMaxSubsteps = 1e6;
+  const double needed = std::ceil(step_length / body.sub_step_ - 1e-9);
+  if (!(needed <= kMaxSubsteps)) {
+    std::ostringstream message;
+    message << "a world step of " << step_length << " s needs " << needed << " sub-steps of " << body.sub_step_
+            << " s, more than " << kMaxSubsteps << ": step the world in shorter steps";
+    body.last_report_ = {StepStatus::kUnstable, message.str()};
+    body.stop_message_ = "soft body stopped at t = " + std::to_string(time_) + " s: " + message.str();
+    return;
+  }
+  const int substeps = std::max(1, static_cast<int>(needed));
   const double dt = step_length / substeps;
   const Eigen::Matrix3Xd user_forces = body.loads_.nodal_forces;
   body.step_settings_.time_step = dt;

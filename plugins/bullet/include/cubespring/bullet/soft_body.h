@@ -108,7 +108,8 @@ class SoftBody {
 
   /// The sub-step the world takes for this body [s].
   double sub_step() const { return sub_step_; }
-  /// The last sub-step's report; a world step stops advancing a body that went unstable.
+  /// The last sub-step's report; a world step stops advancing a body that went unstable, or
+  /// whose step would take more than 10^6 sub-steps (step the world in shorter steps).
   const StepReport& last_report() const { return last_report_; }
   /// Why the world stopped advancing this body, with when; empty while it steps normally.
   const std::string& stop_message() const { return stop_message_; }
