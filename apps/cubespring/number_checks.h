@@ -9,5 +9,7 @@ namespace cubespring::app {
 
 /// A finite number > 0. (CLI11's PositiveNumber lets "nan" and "inf" through: neither is <= 0.)
 CLI::Validator finite_positive_number();
+/// A number in (0, 1].
+CLI::Validator fraction_number();
 
 }  // namespace cubespring::app

@@ -12,6 +12,7 @@
 #include "arguments.h"
 #include "commands.h"
 #include "json_output.h"
+#include "number_checks.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/voxelize.h"
 
@@ -174,20 +175,15 @@ Command add_voxelize_command(CLI::App& app) {
                             ->check(CLI::PositiveNumber)
                             ->capture_default_str();
   size->excludes(across);
-  cmd->add_option("--scale", options->scale, "metres per file unit (0.001 for millimetres)")->capture_default_str();
+  cmd->add_option("--scale", options->scale, "metres per file unit (0.001 for millimetres)")
+      ->check(finite_positive_number())
+      ->capture_default_str();
   cmd->add_option("--rule", options->rule, "which boundary cells are in: centre (the centre is inside) or fraction")
       ->check(CLI::IsMember({"centre", "fraction"}))
       ->capture_default_str();
-  // checked here, so that the error names the flag before the mesh is read
-  const CLI::Validator in_unit_interval(
-      [](std::string& text) {
-        double value = 0.0;
-        const bool ok = CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= 1.0;
-        return ok ? std::string() : "must be in (0, 1], got " + text;
-      },
-      "in (0, 1]");
+  // checked here, so that the errors name the flags before the mesh is read
   cmd->add_option("--min-fraction", options->min_fraction, "rule fraction: the covered fraction a cell needs, in (0, 1]")
-      ->check(in_unit_interval)
+      ->check(fraction_number())
       ->capture_default_str();
   cmd->add_option("--samples", options->samples, "rule fraction: samples per cell along each axis, 1..8")
       ->check(CLI::Range(1, 8))
