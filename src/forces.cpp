@@ -22,12 +22,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "cell_geometry.h"
 #include "drive_nodes.h"
 #include "force_blocks.h"
 #include "force_passes.h"
 #include "grid_forces.h"
+#include "input_checks.h"
 #include "thread_shares.h"
 #include "twist.h"
 
@@ -477,6 +480,10 @@ void ForceWorkspace::resize(const Model& model) {
 
 void compute_forces(const Model& model, const State& state, const Loads& loads,
                     const ForceOptions& options, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
+  std::string error = node_columns_error(model, state.positions, "state.positions");
+  if (error.empty()) error = node_columns_error(model, state.velocities, "state.velocities", !options.damping);
+  if (error.empty()) error = node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true);
+  if (!error.empty()) throw std::invalid_argument("compute_forces: " + error);
   const NodeLoads node_loads(model, state, loads, options);
   (void)force_sweep(model, state, options, ws, forces, [&](int n) {
     node_loads.add(n, forces);
@@ -513,6 +520,7 @@ double cell_signed_volume(const Model& model, const Eigen::Matrix3Xd& positions,
 }
 
 double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
+  require_node_columns(model, x, "elastic_energy: positions");
   double energy = 0.0;
   std::vector<double> length(model.num_springs());
   for (int s = 0; s < model.num_springs(); ++s) {
@@ -548,6 +556,8 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
 }
 
 double potential_energy(const Model& model, const Loads& loads, const Eigen::Matrix3Xd& x) {
+  require_node_columns(model, x, "potential_energy: positions");
+  require_node_columns(model, loads.nodal_forces, "potential_energy: loads.nodal_forces", true);
   const Eigen::Matrix3Xd u = x - model.rest_positions;
   double work = (loads.gravity.transpose() * u * model.mass)(0);
   if (loads.nodal_forces.cols() == model.num_nodes()) work += loads.nodal_forces.cwiseProduct(u).sum();
@@ -555,6 +565,7 @@ double potential_energy(const Model& model, const Loads& loads, const Eigen::Mat
 }
 
 double kinetic_energy(const Model& model, const State& state) {
+  require_node_columns(model, state.velocities, "kinetic_energy: state.velocities");
   return 0.5 * (state.velocities.colwise().squaredNorm().transpose().cwiseProduct(model.mass)).sum();
 }
 

@@ -12,6 +12,7 @@
 #include "conjugate_gradient.h"
 #include "drive_nodes.h"
 #include "force_passes.h"
+#include "input_checks.h"
 #include "thread_shares.h"
 
 namespace cubespring {
@@ -30,6 +31,7 @@ const char* step_status_name(StepStatus status) {
     case StepStatus::kOk: return "ok";
     case StepStatus::kUnstable: return "unstable";
     case StepStatus::kSolverFailed: return "solver-failed";
+    case StepStatus::kInvalidInput: return "invalid-input";
   }
   return "unknown";
 }
@@ -40,13 +42,30 @@ double max_wave_speed(const Model& model) {
   return speed;
 }
 
-Stepper::Stepper(const Model& model) {
+Stepper::Stepper(const Model& model)
+    : made_for_nodes_(model.num_nodes()), made_for_springs_(model.num_springs()), made_for_cells_(model.num_cells()) {
   workspace_.resize(model);
   forces_.setZero(3, model.num_nodes());
 }
 
 StepReport Stepper::step(const Model& model, const Constraints& constraints, const Loads& loads,
                          const StepSettings& settings, State& state) {
+  std::string invalid = state_and_loads_error(model, state, loads);
+  if (invalid.empty()) invalid = constraints_error(model, constraints);
+  if (invalid.empty() && (model.num_nodes() != made_for_nodes_ || model.num_springs() != made_for_springs_ ||
+                          model.num_cells() != made_for_cells_)) {
+    std::ostringstream message;
+    message << "the stepper was made for a body of " << made_for_nodes_ << " nodes, " << made_for_springs_
+            << " springs and " << made_for_cells_ << " cells; this one has " << model.num_nodes() << ", "
+            << model.num_springs() << " and " << model.num_cells() << ": make a Stepper for it";
+    invalid = message.str();
+  }
+  if (invalid.empty() && !(settings.speed_limit >= 0.0 && settings.speed_limit < HUGE_VAL)) {
+    std::ostringstream message;
+    message << "speed_limit = " << settings.speed_limit << " m/s: must be a finite number >= 0 (0: the default)";
+    invalid = message.str();
+  }
+  if (!invalid.empty()) return {StepStatus::kInvalidInput, invalid};
   if (!(settings.time_step > 0.0) || !std::isfinite(settings.time_step)) {
     std::ostringstream message;
     message << "time_step = " << settings.time_step << " s: the time step must be a finite number > 0";

@@ -7,10 +7,12 @@
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include <Eigen/SparseCholesky>
 
 #include "cubespring/stiffness.h"
+#include "input_checks.h"
 
 namespace cubespring {
 namespace {
@@ -110,6 +112,22 @@ bool newton(const Problem& problem, const Loads& loads, double reference_force, 
 StaticReport solve_static(const Model& model, const Constraints& constraints, const Loads& loads,
                           const StaticSettings& settings, State& state) {
   StaticReport report;
+  std::string invalid = node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true);
+  if (invalid.empty()) invalid = constraints_error(model, constraints);
+  if (invalid.empty() && !loads.gravity.allFinite()) invalid = "loads.gravity is not finite";
+  if (invalid.empty() && !(settings.tolerance > 0.0 && std::isfinite(settings.tolerance))) {
+    invalid = "tolerance = " + std::to_string(settings.tolerance) + ": must be a finite number > 0";
+  }
+  if (invalid.empty() && (settings.initial_load_steps < 1 || settings.max_load_steps < 1 ||
+                          settings.max_newton_iterations < 1)) {
+    invalid = "initial_load_steps, max_load_steps and max_newton_iterations must each be >= 1 (got " +
+              std::to_string(settings.initial_load_steps) + ", " + std::to_string(settings.max_load_steps) + ", " +
+              std::to_string(settings.max_newton_iterations) + ")";
+  }
+  if (!invalid.empty()) {  // nothing read, the state unchanged
+    report.message = invalid;
+    return report;
+  }
   const int num_nodes = model.num_nodes();
   Problem problem{model, constraints, loads, std::vector<std::uint8_t>(3 * num_nodes, 0)};
   Eigen::Matrix3Xd target = model.rest_positions;

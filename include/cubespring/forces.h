@@ -56,7 +56,9 @@ struct ForceWorkspace {
 };
 
 /// Total force on every node [N] (3 x num_nodes): springs, correction, inversion recovery,
-/// damping, gravity and nodal loads. docs/model-baudet2007.md gives the formulas.
+/// damping, gravity and nodal loads. docs/model-baudet2007.md gives the formulas. Throws
+/// std::invalid_argument when state.positions, state.velocities (with damping; without, it may
+/// be empty) or loads.nodal_forces (or empty) has not one column per node.
 void compute_forces(const Model& model, const State& state, const Loads& loads,
                     const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces);
 

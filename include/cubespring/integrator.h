@@ -42,6 +42,9 @@ enum class StepStatus {
   kUnstable,      ///< positions or velocities are no longer finite, or a node exceeded the speed
                   ///< limit; the state is left as it was before the step
   kSolverFailed,  ///< implicit: CG did not reach the tolerance; the state is left unchanged
+  kInvalidInput,  ///< the state, loads or constraints do not fit the body (their node counts), the
+                  ///< gravity or speed_limit is not finite and >= 0, or the body is not the one
+                  ///< the stepper was made for: nothing was read or changed
 };
 const char* step_status_name(StepStatus status);
 
@@ -85,6 +88,8 @@ class Stepper {
   State half_step_end_;  // velocity Verlet's second half kick writes here (it reads candidate_)
   std::unique_ptr<StiffnessAssembler> assembler_;  // built on the first implicit step
   SparseMatrix system_;
+  // the body's counts when the stepper was made: its arrays and assembler hold them
+  int made_for_nodes_ = 0, made_for_springs_ = 0, made_for_cells_ = 0;
 };
 
 /// Fastest pressure wave speed among the body's materials [m/s].

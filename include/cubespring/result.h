@@ -9,9 +9,11 @@
 namespace cubespring {
 
 /// Outcome of an operation on outside input: success, or a message that names the value at fault,
-/// what was expected, and (where known) the file. No exceptions cross the API but std::bad_alloc
-/// and, from a body too large for a sparse matrix's int indices, StiffnessAssembler's and
-/// max_stable_time_step's std::length_error.
+/// what was expected, and (where known) the file. No exceptions cross the API but std::bad_alloc;
+/// from a body too large for a sparse matrix's int indices, StiffnessAssembler's and
+/// max_stable_time_step's std::length_error; and from compute_forces() and the energies given
+/// arrays that do not fit the body (their column counts), std::invalid_argument naming them
+/// (Stepper::step reports those as a status).
 class [[nodiscard]] Status {
  public:
   Status() = default;

@@ -31,7 +31,9 @@ struct StaticReport {
 /// a sparse LDL^T solver, an energy line search, and load stepping (the loads and the driven
 /// nodes' displacements ramp from zero to full). state.positions holds the result; velocities are
 /// zeroed. Free bodies (no driven node) are solved in the range of the stiffness: rigid and
-/// zero-energy modes are not excited by self-equilibrated loads.
+/// zero-energy modes are not excited by self-equilibrated loads. Loads or constraints that do not
+/// fit the body, a gravity that is not finite or settings out of range are refused (the message
+/// says which) and the state is left as it was.
 StaticReport solve_static(const Model& model, const Constraints& constraints, const Loads& loads,
                           const StaticSettings& settings, State& state);
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -523,6 +524,76 @@ TEST(Integrator, RefusesABadTimeStep) {
   const StepReport report = stepper.step(model, Constraints(model), Loads{}, settings, state);
   EXPECT_FALSE(report.ok());
   EXPECT_NE(report.message.find("time_step"), std::string::npos);
+}
+
+// Arrays of another body would be read and written past their ends: each is refused, naming it
+// and both counts, and the state is left as it was. So are a gravity that is not finite, a speed
+// limit that is not a number >= 0, and a body other than the stepper's.
+TEST(Integrator, RefusesInputsThatDoNotFitTheBody) {
+  const Model model = test::box_model({2, 2, 2}, Material{});
+  const Model other = test::box_model({3, 2, 2}, Material{});
+  struct Case {
+    const char* what;
+    State state;
+    Loads loads;
+    Constraints constraints;
+    StepSettings settings;
+    const Model* stepper_body;
+    std::string expected;
+  };
+  const State rest = rest_state(model);
+  State no_velocities = rest;
+  no_velocities.velocities.resize(3, 0);
+  Loads short_loads;
+  short_loads.nodal_forces.setZero(3, 5);
+  Loads nan_gravity;
+  nan_gravity.gravity.z() = std::nan("");
+  StepSettings nan_limit;
+  nan_limit.speed_limit = std::nan("");
+  const std::vector<Case> cases{
+      {"velocities", no_velocities, Loads{}, Constraints(model), StepSettings{}, &model,
+       "state.velocities has 0 columns; the body has 27 nodes"},
+      {"state of another body", rest_state(other), Loads{}, Constraints(model), StepSettings{}, &model,
+       "state.positions has 36 columns; the body has 27 nodes"},
+      {"nodal forces", rest, short_loads, Constraints(model), StepSettings{}, &model,
+       "loads.nodal_forces has 5 columns; the body has 27 nodes (or leave it empty)"},
+      {"gravity", rest, nan_gravity, Constraints(model), StepSettings{}, &model, "loads.gravity"},
+      {"constraints", rest, Loads{}, Constraints(other), StepSettings{}, &model,
+       "the constraints are for a body of 36 nodes; this one has 27"},
+      {"speed limit", rest, Loads{}, Constraints(model), nan_limit, &model, "speed_limit = nan"},
+      {"stepper", rest, Loads{}, Constraints(model), StepSettings{}, &other, "the stepper was made for a body of 36 nodes"},
+  };
+  for (const Case& c : cases) {
+    for (const Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kImplicitEuler}) {
+      State state = c.state;
+      StepSettings settings = c.settings;
+      settings.integrator = integrator;
+      Stepper stepper(*c.stepper_body);
+      const StepReport report = stepper.step(model, c.constraints, c.loads, settings, state);
+      EXPECT_EQ(report.status, StepStatus::kInvalidInput) << c.what;
+      EXPECT_NE(report.message.find(c.expected), std::string::npos) << c.what << ": " << report.message;
+      EXPECT_TRUE(state == c.state) << c.what;
+    }
+  }
+  // the functions that return their result throw instead
+  ForceWorkspace ws;
+  Eigen::Matrix3Xd forces;
+  EXPECT_THROW(compute_forces(model, no_velocities, Loads{}, ForceOptions{true, 1}, ws, forces), std::invalid_argument);
+  EXPECT_THROW(compute_forces(model, rest, short_loads, ForceOptions{false, 1}, ws, forces), std::invalid_argument);
+  EXPECT_NO_THROW(compute_forces(model, no_velocities, Loads{}, ForceOptions{false, 1}, ws, forces));
+  EXPECT_THROW((void)elastic_energy(model, other.rest_positions), std::invalid_argument);
+  // and the static solver reports them, leaving the state
+  State state = rest;
+  StaticSettings zero_tolerance;
+  zero_tolerance.tolerance = 0.0;
+  for (const auto& [report, expected] :
+       {std::pair{solve_static(model, Constraints(other), Loads{}, StaticSettings{}, state), "36 nodes"},
+        std::pair{solve_static(model, Constraints(model), short_loads, StaticSettings{}, state), "loads.nodal_forces"},
+        std::pair{solve_static(model, Constraints(model), Loads{}, zero_tolerance, state), "tolerance = 0"}}) {
+    EXPECT_FALSE(report.converged);
+    EXPECT_NE(report.message.find(expected), std::string::npos) << report.message;
+  }
+  EXPECT_TRUE(state == rest);
 }
 
 TEST(Integrator, RefusesBadSolverSettings) {

@@ -1,0 +1,44 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "input_checks.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace cubespring {
+
+std::string node_columns_error(const Model& model, const Eigen::Matrix3Xd& values, const char* name,
+                               bool may_be_empty) {
+  if (values.cols() == model.num_nodes() || (may_be_empty && values.size() == 0)) return {};
+  std::ostringstream message;
+  message << name << " has " << values.cols() << " columns; the body has " << model.num_nodes()
+          << " nodes" << (may_be_empty ? " (or leave it empty)" : "");
+  return message.str();
+}
+
+void require_node_columns(const Model& model, const Eigen::Matrix3Xd& values, const char* name, bool may_be_empty) {
+  const std::string error = node_columns_error(model, values, name, may_be_empty);
+  if (!error.empty()) throw std::invalid_argument(error);
+}
+
+std::string state_and_loads_error(const Model& model, const State& state, const Loads& loads) {
+  for (const std::string& error : {node_columns_error(model, state.positions, "state.positions"),
+                                   node_columns_error(model, state.velocities, "state.velocities"),
+                                   node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true)}) {
+    if (!error.empty()) return error;
+  }
+  if (!loads.gravity.allFinite()) {
+    std::ostringstream message;
+    message << "loads.gravity = (" << loads.gravity.transpose() << ") m/s^2 is not finite";
+    return message.str();
+  }
+  return {};
+}
+
+std::string constraints_error(const Model& model, const Constraints& constraints) {
+  if (constraints.num_nodes() == 0 || constraints.num_nodes() == model.num_nodes()) return {};
+  return "the constraints are for a body of " + std::to_string(constraints.num_nodes()) + " nodes; this one has " +
+         std::to_string(model.num_nodes());
+}
+
+}  // namespace cubespring
