@@ -49,9 +49,13 @@ Status check_settings(const ExperimentSettings& s) {
     return Status::error(message.str());
   }
   // before box_lattice() lists them
-  const std::uint64_t count = static_cast<std::uint64_t>(s.cells.x()) * static_cast<std::uint64_t>(s.cells.y()) *
-                              static_cast<std::uint64_t>(s.cells.z());
-  if (Status size = check_lattice_size(count); !size) {
+  // in double: three ints' product can pass 2^64
+  const double product = static_cast<double>(s.cells.x()) * s.cells.y() * s.cells.z();
+  const Status size = product > static_cast<double>(kMaxCells)
+                          ? Status::error(std::to_string(product) + " cells: a body may have at most " +
+                                          std::to_string(kMaxCells) + " (its springs are indexed by int)")
+                          : check_lattice_size(static_cast<std::uint64_t>(product));
+  if (!size) {
     std::ostringstream message;
     message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z() << ": " << size.message();
     return Status::error(message.str());

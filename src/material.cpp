@@ -28,6 +28,14 @@ Status validate(const Material& material) {
                          format(kMaxPoissonRatio) +
                          " (edge springs vanish at -0.25, the bulk modulus is infinite at 0.5)");
   }
+  // the moduli the springs and corrections come from (near the ends of double's range they
+  // overflow, or underflow to a stiffness of 0)
+  if (!std::isnormal(shear_modulus(material)) || !std::isnormal(p_wave_modulus(material))) {
+    return Status::error("young_modulus = " + format(material.young_modulus) + " Pa with poisson_ratio = " +
+                         format(material.poisson_ratio) + ": the shear modulus " + format(shear_modulus(material)) +
+                         " Pa or the P-wave modulus " + format(p_wave_modulus(material)) +
+                         " Pa is out of the range of double");
+  }
   if (!std::isfinite(material.density) || material.density <= 0.0) {
     return Status::error("density = " + format(material.density) +
                          " kg/m^3: density must be a finite number > 0");

@@ -197,6 +197,12 @@ TEST(Experiments, RejectBadSettings) {
   r = run_experiment(Experiment::kElongation, s);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("poisson_ratio"), std::string::npos);
+  // 2^22 x 2^21 x 2^21 cells: a product that wraps to 0 in 64 bits is still refused
+  s = cube(0.3);
+  s.cells = {1 << 22, 1 << 21, 1 << 21};
+  r = run_experiment(Experiment::kElongation, s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("a body may have at most"), std::string::npos) << r.message();
   Result<Experiment> unknown = parse_experiment("twist");
   ASSERT_FALSE(unknown.ok());
   EXPECT_NE(unknown.message().find("twist"), std::string::npos);

@@ -48,6 +48,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(BadField{"young_modulus", with(&Material::young_modulus, 0.0)},
                       BadField{"young_modulus", with(&Material::young_modulus, -1.0)},
                       BadField{"young_modulus", with(&Material::young_modulus, std::nan(""))},
+                      // finite, but lambda + 2G overflows; or so small that G underflows
+                      BadField{"young_modulus", with(&Material::young_modulus, 1.7e308)},
+                      BadField{"young_modulus", with(&Material::young_modulus, 1e-310)},
                       BadField{"poisson_ratio", with(&Material::poisson_ratio, 0.5)},
                       BadField{"poisson_ratio", with(&Material::poisson_ratio, 0.7)},
                       BadField{"poisson_ratio", with(&Material::poisson_ratio, -0.25)},
