@@ -2,9 +2,11 @@
 // SPDX-License-Identifier: MIT
 #include "cubespring/embedding.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
 #include <unordered_map>
 
 #include <Eigen/Geometry>
@@ -27,9 +29,19 @@ double squared_distance_to_cell(const Eigen::Vector3d& local, const Eigen::Vecto
   return outside.squaredNorm();
 }
 
-// The occupied cell nearest to a point given in grid units, by rings of growing radius around
-// the grid cell that contains it; stops once no farther ring can hold a nearer cell.
-int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const Eigen::Vector3d& local,
+// The lattice's cells span [low, high] (grid indices); only cells in there can be occupied (and
+// only their keys are distinct).
+struct CellBox {
+  Eigen::Vector3i low, high;
+  bool contains(const Eigen::Vector3i& cell) const {
+    return (cell.array() >= low.array()).all() && (cell.array() <= high.array()).all();
+  }
+};
+
+// The occupied cell nearest to a point given in grid units, by rings (the shells of cubes) of
+// growing radius around the grid cell that contains it; stops once no farther ring can hold a
+// nearer cell.
+int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const CellBox& box, const Eigen::Vector3d& local,
                  const Eigen::Vector3d& h, int max_radius) {
   const Eigen::Vector3i home = local.array().floor().cast<int>();
   int best = -1;
@@ -39,9 +51,12 @@ int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const Eig
     if (best >= 0 && (radius - 1) * h.minCoeff() > std::sqrt(best_distance)) break;
     for (int dz = -radius; dz <= radius; ++dz) {
       for (int dy = -radius; dy <= radius; ++dy) {
-        for (int dx = -radius; dx <= radius; ++dx) {
-          if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != radius) continue;
+        // inside the shell's top and bottom and its sides along y, only its two x-ends
+        const bool whole_row = std::abs(dz) == radius || std::abs(dy) == radius;
+        const int dx_step = whole_row || radius == 0 ? 1 : 2 * radius;
+        for (int dx = -radius; dx <= radius; dx += dx_step) {
           const Eigen::Vector3i cell = home + Eigen::Vector3i(dx, dy, dz);
+          if (!box.contains(cell)) continue;
           const auto found = cell_of.find(cell_key(cell));
           if (found == cell_of.end()) continue;
           const double distance = squared_distance_to_cell(local, cell, h);
@@ -69,13 +84,15 @@ Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
   if (Status status = validate(visual); !status) return status;
   if (model.num_cells() == 0) return Status::error("cannot embed a mesh in a model with no cells");
   std::unordered_map<std::int64_t, int> cell_of;
-  Eigen::Vector3i low = model.cell_grid_index.front();
-  Eigen::Vector3i high = low;
+  CellBox box{model.cell_grid_index.front(), model.cell_grid_index.front()};
   for (int c = 0; c < model.num_cells(); ++c) {
     cell_of.emplace(cell_key(model.cell_grid_index[static_cast<std::size_t>(c)]), c);
-    low = low.cwiseMin(model.cell_grid_index[static_cast<std::size_t>(c)]);
-    high = high.cwiseMax(model.cell_grid_index[static_cast<std::size_t>(c)]);
+    box.low = box.low.cwiseMin(model.cell_grid_index[static_cast<std::size_t>(c)]);
+    box.high = box.high.cwiseMax(model.cell_grid_index[static_cast<std::size_t>(c)]);
   }
+  // a vertex bound to a cell farther than the lattice is long would move by extrapolation, not
+  // with the tissue (and finding its cell would take long): most likely another unit or place
+  const int longest = (box.high - box.low).maxCoeff() + 1;
   Embedding embedding;
   embedding.triangles = visual.triangles;
   embedding.vertex_cell.resize(static_cast<std::size_t>(visual.num_vertices()));
@@ -84,15 +101,21 @@ Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
     // position in grid units: cell (i, j, k) spans [i, i + 1) x [j, j + 1) x [k, k + 1)
     const Eigen::Vector3d local =
         (visual.vertices.col(v) - model.origin).cwiseQuotient(model.cell_size);
-    if (!(local.array().abs() < 1e9).all()) {
-      return Status::error("vertex " + std::to_string(v) + " lies too far from the lattice to embed");
+    const Eigen::Vector3d home_cell = local.array().floor();
+    const Eigen::Vector3d beyond = (box.low.cast<double>() - home_cell).cwiseMax(home_cell - box.high.cast<double>());
+    if (!(beyond.maxCoeff() <= longest)) {  // NaN too
+      std::ostringstream message;
+      message << "vertex " << v << " at (" << visual.vertices.col(v).transpose() << ") m lies " << beyond.maxCoeff()
+              << " cells outside the lattice, which is " << longest
+              << " cells long: is the visual mesh in the lattice's units and place?";
+      return Status::error(message.str());
     }
-    const Eigen::Vector3i home = local.array().floor().cast<int>();
-    const auto found = cell_of.find(cell_key(home));
+    const Eigen::Vector3i home = home_cell.cast<int>();
+    const auto found = box.contains(home) ? cell_of.find(cell_key(home)) : cell_of.end();
     int cell = found != cell_of.end() ? found->second : -1;
     if (cell < 0) {
-      const Eigen::Vector3i reach = (home - low).cwiseAbs().cwiseMax((home - high).cwiseAbs());
-      cell = nearest_cell(cell_of, local, model.cell_size, reach.maxCoeff() + 1);
+      const Eigen::Vector3i reach = (home - box.low).cwiseAbs().cwiseMax((home - box.high).cwiseAbs());
+      cell = nearest_cell(cell_of, box, local, model.cell_size, reach.maxCoeff() + 1);
     }
     embedding.vertex_cell[static_cast<std::size_t>(v)] = cell;
     embedding.vertex_local.col(v) = local - model.cell_grid_index[static_cast<std::size_t>(cell)].cast<double>();

@@ -26,7 +26,8 @@ struct Embedding {
 };
 
 /// Binds every vertex of `visual` to the cell that contains it at rest, or to the nearest cell
-/// when it lies in an empty one. Fails on an invalid mesh or a model with no cells.
+/// when it lies in an empty one. Fails on an invalid mesh, a model with no cells, or a vertex
+/// farther outside the lattice's box than the lattice is long (another unit or place, most likely).
 Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual);
 
 /// Vertex positions (3 x num_vertices) [m] for node positions (3 x num_nodes) [m], e.g.

@@ -114,5 +114,24 @@ TEST(Embedding, RefusesAnInvalidMeshOrAnEmptyModel) {
   EXPECT_FALSE(embed_mesh(Model{}, s.mesh).ok());
 }
 
+// The same sphere given in millimetres while the lattice is in metres: its vertices lie about
+// 10^4 cells out. They are refused at once, with the vertex and how far out it is (binding them
+// would have searched about 10^16 cells, and they would move by extrapolation, not with the body).
+// A vertex just outside still binds to its nearest cell.
+TEST(Embedding, RefusesAVertexFarOutsideTheLattice) {
+  const EmbeddedSphere s = embedded_sphere();
+  TriangleMesh millimetres = s.mesh;
+  millimetres.vertices *= 1000.0;
+  const Result<Embedding> far = embed_mesh(s.model, millimetres);
+  ASSERT_FALSE(far.ok());
+  EXPECT_NE(far.message().find("cells outside the lattice, which is 12 cells long"), std::string::npos)
+      << far.message();
+  TriangleMesh near = s.mesh;
+  near.vertices.col(0) += Eigen::Vector3d(0.0, 0.0, 0.05);  // a few cells above the sphere
+  const Result<Embedding> bound = embed_mesh(s.model, near);
+  ASSERT_TRUE(bound.ok()) << bound.message();
+  EXPECT_GE(bound->vertex_cell[0], 0);
+}
+
 }  // namespace
 }  // namespace cubespring
