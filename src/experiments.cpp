@@ -5,7 +5,6 @@
 #include "cubespring/experiments.h"
 
 #include <cmath>
-#include <cstdint>
 #include <sstream>
 
 #include "cubespring/constraints.h"
@@ -50,12 +49,7 @@ Status check_settings(const ExperimentSettings& s) {
   }
   // before box_lattice() lists them
   // in double: three ints' product can pass 2^64
-  const double product = static_cast<double>(s.cells.x()) * s.cells.y() * s.cells.z();
-  const Status size = product > static_cast<double>(kMaxCells)
-                          ? Status::error(std::to_string(product) + " cells: a body may have at most " +
-                                          std::to_string(kMaxCells) + " (its springs are indexed by int)")
-                          : check_lattice_size(static_cast<std::uint64_t>(product));
-  if (!size) {
+  if (Status size = check_lattice_size(static_cast<double>(s.cells.x()) * s.cells.y() * s.cells.z()); !size) {
     std::ostringstream message;
     message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z() << ": " << size.message();
     return Status::error(message.str());

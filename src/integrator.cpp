@@ -60,9 +60,9 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
             << model.num_springs() << " and " << model.num_cells() << ": make a Stepper for it";
     invalid = message.str();
   }
-  if (invalid.empty() && !(settings.speed_limit >= 0.0 && settings.speed_limit < HUGE_VAL)) {
+  if (invalid.empty() && !(settings.speed_limit >= 0.0)) {  // NaN too; infinity: no limit
     std::ostringstream message;
-    message << "speed_limit = " << settings.speed_limit << " m/s: must be a finite number >= 0 (0: the default)";
+    message << "speed_limit = " << settings.speed_limit << " m/s: must be a number >= 0 (0: the default)";
     invalid = message.str();
   }
   if (!invalid.empty()) return {StepStatus::kInvalidInput, invalid};

@@ -2,25 +2,28 @@
 // SPDX-License-Identifier: MIT
 #include "cubespring/lattice.h"
 
+#include <iomanip>
 #include <sstream>
 
 #include "cubespring/voxelize.h"
 
 namespace cubespring {
 
-Status check_lattice_size(std::uint64_t cells, std::uint64_t memory_limit) {
+Status check_lattice_size(double cells, std::uint64_t memory_limit) {
   const std::uint64_t limit = memory_limit > 0 ? memory_limit : default_memory_limit();
   std::ostringstream message;
-  if (cells > kMaxCells) {
-    message << cells << " cells: a body may have at most " << kMaxCells << " (its springs are indexed by int)";
+  message << std::fixed << std::setprecision(0) << cells << " cells";
+  if (!(cells <= static_cast<double>(kMaxCells))) {
+    message << ": a body may have at most " << kMaxCells << " (its springs are indexed by int)";
     return Status::error(message.str());
   }
   // a compact body has about as many nodes as cells and 7 springs a cell
-  const std::uint64_t bytes = estimate_body_bytes(cells, cells, 7 * cells);
+  const auto count = static_cast<std::uint64_t>(cells);
+  const std::uint64_t bytes = estimate_body_bytes(count, count, 7 * count);
   if (bytes > limit) {
-    message << cells << " cells take about " << static_cast<double>(bytes) / 1e9
-            << " GB once built, more than the memory limit of " << static_cast<double>(limit) / 1e9
-            << " GB" << (memory_limit > 0 ? "" : " (half this machine's memory)");
+    message << std::setprecision(3) << " take about " << static_cast<double>(bytes) / 1e9
+            << " GB once built, more than the memory limit of " << static_cast<double>(limit) / 1e9 << " GB"
+            << (memory_limit > 0 ? "" : " (half this machine's memory)");
     return Status::error(message.str());
   }
   return {};

@@ -61,7 +61,10 @@ Status check_desc(const LatticeDesc& desc) {
   }
   if (!desc.origin.allFinite()) return Status::error("origin is not finite");
   if (desc.cells.empty()) return Status::error("the lattice has no cells");
-  if (Status size = check_lattice_size(desc.cells.size()); !size) return Status::error("the lattice has " + size.message());
+  if (desc.cells.size() > kMaxCells) {
+    return Status::error("the lattice has " + std::to_string(desc.cells.size()) + " cells: a body may have at most " +
+                         std::to_string(kMaxCells) + " (its springs are indexed by int)");
+  }
   // the cell volume and the stiffnesses come from products of the sizes
   if (!std::isnormal(desc.cell_size.prod())) {
     std::ostringstream message;

@@ -114,7 +114,11 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   StaticReport report;
   std::string invalid = node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true);
   if (invalid.empty()) invalid = constraints_error(model, constraints);
-  if (invalid.empty() && !loads.gravity.allFinite()) invalid = "loads.gravity is not finite";
+  if (invalid.empty() && !loads.gravity.allFinite()) {
+    std::ostringstream message;
+    message << "loads.gravity = (" << loads.gravity.transpose() << ") m/s^2 is not finite";
+    invalid = message.str();
+  }
   if (invalid.empty() && !(settings.tolerance > 0.0 && std::isfinite(settings.tolerance))) {
     invalid = "tolerance = " + std::to_string(settings.tolerance) + ": must be a finite number > 0";
   }
@@ -159,8 +163,8 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   Eigen::Matrix3Xd x = model.rest_positions;
   Eigen::Matrix3Xd start_driven = model.rest_positions;
   double done = 0.0;
-  double increment = 1.0 / std::max(1, settings.initial_load_steps);
-  const double smallest = 1.0 / std::max(1, settings.max_load_steps);
+  double increment = 1.0 / settings.initial_load_steps;
+  const double smallest = 1.0 / settings.max_load_steps;
   while (done < 1.0) {
     const double next = std::min(1.0, done + increment);
     Eigen::Matrix3Xd trial = x;

@@ -32,8 +32,8 @@ struct StepSettings {
   double solver_tolerance = 1e-6;       ///< implicit: CG relative residual, finite and > 0
   int solver_max_iterations = 2000;     ///< implicit: CG iteration cap, >= 1 (a residual that turns
                                         ///< NaN stops CG before it: solver-failed)
-  /// A node faster than this is taken as a blow-up [m/s]; 0 means 10 times the fastest pressure
-  /// wave speed of the body's materials.
+  /// A node faster than this is taken as a blow-up [m/s], >= 0 (infinity: none); 0 means 10 times
+  /// the fastest pressure wave speed of the body's materials.
   double speed_limit = 0.0;
 };
 
@@ -43,7 +43,7 @@ enum class StepStatus {
                   ///< limit; the state is left as it was before the step
   kSolverFailed,  ///< implicit: CG did not reach the tolerance; the state is left unchanged
   kInvalidInput,  ///< the state, loads or constraints do not fit the body (their node counts), the
-                  ///< gravity or speed_limit is not finite and >= 0, or the body is not the one
+                  ///< gravity is not finite or speed_limit not >= 0, or the body is not the one
                   ///< the stepper was made for: nothing was read or changed
 };
 const char* step_status_name(StepStatus status);

@@ -53,11 +53,12 @@ struct LatticeDesc {
 /// The most cells a body may have: its springs (up to 16 a cell) are indexed by int.
 inline constexpr std::uint64_t kMaxCells = 0x7fffffff / 16;
 
-/// Whether a body of `cells` cells can be built here: at most kMaxCells, and the memory it takes
-/// once built (estimate_body_bytes, voxelize.h) within `memory_limit` bytes (0: half this
-/// machine's memory, default_memory_limit()). The error gives the count, the estimate and the
-/// limit. build_model() checks it; check it before box_lattice() for counts from a user.
-Status check_lattice_size(std::uint64_t cells, std::uint64_t memory_limit = 0);
+/// Whether a body of `cells` cells can be built here: at most kMaxCells (which build_model()
+/// checks), and the memory it takes once built (estimate_body_bytes, voxelize.h) within
+/// `memory_limit` bytes (0: half this machine's memory, default_memory_limit()). The error gives
+/// the count, the estimate and the limit. Check it before box_lattice() for counts from a user
+/// (the count as a double: a product of three counts can pass 2^64).
+Status check_lattice_size(double cells, std::uint64_t memory_limit = 0);
 
 /// A box of counts.x() x counts.y() x counts.z() cells spanning
 /// [0, nx hx] x [0, ny hy] x [0, nz hz], all of one material.

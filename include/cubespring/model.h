@@ -112,8 +112,7 @@ struct Model {
 };
 
 /// Validates the description (cell size, materials, cell indices, the model's validity for the
-/// cell shape, its size: check_lattice_size() with the default limit, half this machine's
-/// memory) and builds the model. Errors name the value at fault and the allowed range.
+/// cell shape, at most kMaxCells cells) and builds the model. Errors name the value at fault and the allowed range.
 Result<Model> build_model(const LatticeDesc& desc);
 
 /// The fraction of its bounding box's cells a body fills at least for build_model() to put it on

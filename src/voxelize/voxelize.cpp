@@ -251,7 +251,8 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
     std::ostringstream out;
     out << "a grid of " << span.x() << " x " << span.y() << " x " << span.z() << " cells of "
         << describe_vector(result.cell_size) << " m with " << samples_per_cell
-        << " samples a cell has more than 2^31 samples: use a larger cell size or fewer cells across";
+        << " samples a cell has more samples than int indices address (2^31 - 1): use a larger cell size or "
+           "fewer cells across";
     return Status::error(out.str());
   }
   result.grid_size = span.cast<int>();
