@@ -14,8 +14,9 @@ constexpr char kMagic[8] = {'C', 'U', 'B', 'E', 'S', 'T', 'A', '2'};
 constexpr char kZMajorMagic[8] = {'C', 'U', 'B', 'E', 'S', 'T', 'A', '1'};
 
 bool same_bits(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
+  // an empty matrix's data() is null, which memcmp may not be given even for 0 bytes
   return a.cols() == b.cols() &&
-         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0);
 }
 
 void hash_bytes(std::uint64_t& hash, const void* data, std::size_t size) {
