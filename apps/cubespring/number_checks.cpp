@@ -7,29 +7,32 @@
 #include <string>
 
 namespace cubespring::app {
+namespace {
 
-CLI::Validator finite_positive_number() {
+// A number that `accept` takes, else the error "'TEXT' is not <what>".
+CLI::Validator number_check(bool (*accept)(double), const std::string& what, const std::string& description,
+                            const std::string& name) {
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [accept, what](std::string& text) -> std::string {
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
         if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
-        if (!std::isfinite(value) || !(value > 0.0)) return "'" + text + "' is not a finite number > 0";
+        if (!accept(value)) return "'" + text + "' is not " + what;
         return {};
       },
-      "NUMBER > 0", "FINITE_POSITIVE");
+      description, name);
+}
+
+}  // namespace
+
+CLI::Validator finite_positive_number() {
+  return number_check([](double value) { return std::isfinite(value) && value > 0.0; }, "a finite number > 0",
+                      "NUMBER > 0", "FINITE_POSITIVE");
 }
 
 CLI::Validator fraction_number() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
-        if (!(value > 0.0 && value <= 1.0)) return "'" + text + "' is not in (0, 1]";
-        return {};
-      },
-      "NUMBER in (0, 1]", "FRACTION");
+  return number_check([](double value) { return value > 0.0 && value <= 1.0; }, "in (0, 1]", "NUMBER in (0, 1]",
+                      "FRACTION");
 }
 
 }  // namespace cubespring::app
