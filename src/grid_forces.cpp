@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <cassert>
 #include <cmath>
@@ -400,14 +401,15 @@ struct LayerPasses {
     return with_rate ? cell_pass<true, false, kUniform>(grid, slab, a, count_crushed)
                      : cell_pass<false, false, kUniform>(grid, slab, a, count_crushed);
   }
-  // edge families first_family on; needs cells(slab) and cells(slab - 1) (the z-edges cells(slab)
-  // only); the twist also measure(slab - 1) (x- and y-edges) or measure(slab + 1) (z-edges)
-  void edge_tensions(int slab, int first_family = 0) const {
+  // edge families [first_family, end_family), each once a layer (the pass scales the unit
+  // vector); needs cells(slab) and cells(slab - 1) (the z-edges cells(slab) only); the twist also
+  // measure(slab - 1) and the faces of slab - 1 (x- and y-edges) or measure(slab + 1) (z-edges)
+  void edge_tensions(int slab, int first_family = 0, int end_family = kEdgeFamilies) const {
     if (slab < 0) return;
     // the z-edges' twist reads the faces normal to x and y only (their Q_z would need the cells of
     // the layer below)
     if (grid.has_twist) face_twist_pass(grid, slab, a, first_family == kZEdges ? 2 : 3);
-    for (int f = first_family; f < kEdgeFamilies; ++f) {
+    for (int f = first_family; f < end_family; ++f) {
       edge_tension_pass(grid, f, slab, a);
       if (grid.has_twist) twist_edge_pass(grid, f, slab, a);
     }
@@ -468,11 +470,13 @@ void copy_out(const GridLayout& grid, const LayerArrays& a, int slot, const Rang
 constexpr int kMaxGridThreads = 64;
 
 // What the chunks share besides the arrays: their crushed cells, their nodes' fastest squared
-// speed when they kick, and the time each took for its own work (not waiting) [s].
+// speed when they kick, the time each took for its own work (not waiting) [s] and the layers
+// each gathered.
 struct ChunkResults {
   std::array<int, kMaxGridThreads> crushed{};
   std::array<double, kMaxGridThreads> fastest_sq{};
   std::array<double, kMaxGridThreads> seconds{};
+  std::array<Range, kMaxGridThreads> gathered{};
   int total_crushed() const {
     int total = 0;
     for (int c : crushed) total += c;
@@ -480,50 +484,113 @@ struct ChunkResults {
   }
 };
 
-// Chunk `chunk` of the work, the z-layers `layers`; barrier() waits for every chunk. Each chunk
-// runs the passes layer after layer in its own ring of temporaries. Its first gather needs the
-// spring forces of the layer below, another chunk's: the chunk recomputes them (the springs and
-// cells of that layer, its z-edges' tensions) rather than wait for that chunk, so that chunks
-// share only the positions and velocities, which every chunk copies in before any reads them
-// (sharing that layer instead was no faster: docs/data-layout.md). Then each chunk finishes the nodes of its layers, whose
-// forces are complete once its own gathers are: the kick when asked, without waiting to learn
-// whether another chunk found a crushed cell (then the caller redoes the crushed cells' corners
-// with their recovery, from the spring forces left in the grid), else the forces alone. When
-// timed, the chunk's time for its own work, not waiting, goes to results.seconds.
-template <typename Barrier>
-void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick,
-               const GridScratch& scratch, const Range& layers, int chunk, bool timed, const Barrier& barrier,
-               ChunkResults& results, Eigen::Matrix3Xd& forces) {
-  using Clock = std::chrono::steady_clock;
-  const auto now = [timed] { return timed ? Clock::now() : Clock::time_point{}; };  // one thread: nothing to balance
-  const auto start = now();
-  const Range nodes = nodes_in_layers(grid, layers);
-  const LayerArrays a = scratch.arrays(chunk);
-  copy_in(grid, state.positions, a, kPosition, nodes);
-  if (with_rate) copy_in(grid, state.velocities, a, kVelocity, nodes);
-  const auto before_barrier = now();
-  barrier();
-  const auto after_barrier = now();
-  const LayerPasses passes{grid, a, with_rate};
-  const int first = layers.begin;
-  // the springs of the layer below that end in this chunk's first layer (nothing below the
-  // grid): its z-edges and diagonals. The z-edges' tensions need the cells of that layer only
-  // (not their crushed counts: those are the chunk below's); its x- and y-edges, which would need
-  // the layer below it, stay as they are: no gather here reads them.
+// Chunks go in pairs, chunk 2r sweeping region r's layers of points up from its first, chunk
+// 2r + 1 down from its last; the last chunk of an odd count sweeps its region up alone.
+int num_regions(int chunks) { return (chunks + 1) / 2; }
+bool sweeps_down(int chunk) { return chunk % 2 == 1; }
+int threads_in_region(int region, int chunks) { return std::min(2, chunks - 2 * region); }
+Range region_layers(const std::vector<int>& first, int region, int chunks) {
+  return {first[2 * region], first[std::min(2 * region + 2, chunks)]};
+}
+
+// A chunk's share: the region it sweeps and the layers whose state it copies in. A layer is
+// gathered by the chunk that claims it: each claim takes one of the region's unclaimed layers
+// (the next above the up-chunk's last, or below the down-chunk's), so the pair meets where their
+// speeds on this call bring them; with a fixed meeting point, up to it and from it.
+struct ChunkPlan {
+  Range region;
+  Range copied;
+  bool down = false;
+  std::atomic<int>* unclaimed = nullptr;  // the region's layers not yet claimed
+  int fixed_meet = -1;                    // >= 0: where the pair meets, no claims
+
+  bool claim(int layer) const {
+    if (fixed_meet >= 0) return down ? layer >= fixed_meet : layer < fixed_meet;
+    return unclaimed->fetch_sub(1, std::memory_order_relaxed) > 0;  // only the count is shared
+  }
+};
+
+// Sweeps up from the region's first layer while it claims layers; returns those it gathered.
+// Its first gather needs the spring forces of the layer below, another chunk's: the chunk
+// recomputes them (the springs and cells of that layer, its z-edges' tensions) rather than wait
+// for that chunk (sharing that layer instead was no faster: docs/data-layout.md).
+Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, int& crushed) {
+  const int first = plan.region.begin;
+  if (first == plan.region.end || !plan.claim(first)) return {first, first};
+  // the springs of the layer below that end in the first layer (nothing below the grid): its
+  // z-edges and diagonals. The z-edges' tensions need the cells of that layer only (not their
+  // crushed counts: those are the chunk below's); its x- and y-edges, which would need the layer
+  // below it, stay as they are: no gather here reads them.
   passes.measure(first - 1);
   passes.measure(first);
   passes.cells(first - 1, false);
   passes.edge_tensions(first - 1, kZEdges);
-  int crushed = 0;
-  for (int slab = first; slab < layers.end; ++slab) {
-    // of the next chunk's first layer, only the x- and y-edges, whose lengths the cells of this
-    // chunk's last layer read: its z-edges and diagonals end in no point of this chunk
-    passes.measure(slab + 1, slab + 1 == layers.end ? kZEdges : kSpringFamilies);
+  int slab = first;
+  do {
+    // of the region's next layer, only the x- and y-edges, whose lengths the cells of this
+    // layer read: its z-edges and diagonals end in no point of this region
+    passes.measure(slab + 1, slab + 1 == plan.region.end ? kZEdges : kSpringFamilies);
     crushed += passes.cells(slab);
     passes.edge_tensions(slab);
     passes.gather(slab);
+    ++slab;
+  } while (slab < plan.region.end && plan.claim(slab));
+  return {first, slab};
+}
+
+// Sweeps down from the region's last layer while it claims layers; returns those it gathered.
+// The gather of a layer reads the springs that start in it and in the layer below, and the
+// x- and y-edges' tensions the cells on both sides of them: the passes of the layer below come
+// first, then the x- and y-edges of this layer. The first layer's z-edges, which go up into the
+// region above, and the cells they read, it computes itself.
+Range sweep_down(const LayerPasses& passes, const ChunkPlan& plan, int& crushed) {
+  int slab = plan.region.end - 1;
+  if (slab < plan.region.begin || !plan.claim(slab)) return {slab + 1, slab + 1};
+  passes.measure(slab + 1, kZEdges);  // the x- and y-edges above, which the cells read
+  passes.measure(slab);
+  crushed += passes.cells(slab);
+  passes.edge_tensions(slab, kZEdges);
+  for (;;) {
+    passes.measure(slab - 1);
+    const int crushed_below = passes.cells(slab - 1);  // the claimer of slab - 1 counts them
+    passes.edge_tensions(slab - 1, kZEdges);
+    passes.edge_tensions(slab, 0, kZEdges);
+    passes.gather(slab);
+    if (slab == plan.region.begin || !plan.claim(slab - 1)) break;
+    --slab;
+    crushed += crushed_below;
   }
+  return {slab, plan.region.end};
+}
+
+// Chunk `chunk`'s share of the work (plan); barrier() waits for every chunk. Each chunk copies in
+// the state of its layers, waits for all (a chunk reads the layers beside the ones it gathers),
+// then runs the passes layer after layer in its own ring of temporaries. Then it finishes the
+// nodes of the layers it gathered, whose forces are complete once its own gathers are: the kick
+// when asked, without waiting to learn whether another chunk found a crushed cell (then the
+// caller redoes the crushed cells' corners with their recovery, from the spring forces left in
+// the grid), else the forces alone. When timed, the chunk's time for its own work, not waiting,
+// goes to results.seconds.
+template <typename Barrier>
+void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick,
+               const GridScratch& scratch, const ChunkPlan& plan, int chunk, bool timed, const Barrier& barrier,
+               ChunkResults& results, Eigen::Matrix3Xd& forces) {
+  using Clock = std::chrono::steady_clock;
+  const auto now = [timed] { return timed ? Clock::now() : Clock::time_point{}; };  // one thread: nothing to balance
+  const auto start = now();
+  const LayerArrays a = scratch.arrays(chunk);
+  const Range copied = nodes_in_layers(grid, plan.copied);
+  copy_in(grid, state.positions, a, kPosition, copied);
+  if (with_rate) copy_in(grid, state.velocities, a, kVelocity, copied);
+  const auto before_barrier = now();
+  barrier();
+  const auto after_barrier = now();
+  const LayerPasses passes{grid, a, with_rate};
+  int crushed = 0;
+  const Range gathered = plan.down ? sweep_down(passes, plan, crushed) : sweep_up(passes, plan, crushed);
   results.crushed[chunk] = crushed;
+  results.gathered[chunk] = gathered;
+  const Range nodes = nodes_in_layers(grid, gathered);
   if (kick != nullptr) {  // at once: if a cell turns out crushed, the caller redoes its corners
     const double* force[3] = {a.in(kForce, 0), a.in(kForce + 1, 0), a.in(kForce + 2, 0)};
     results.fastest_sq[chunk] =
@@ -535,65 +602,89 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
       std::chrono::duration<double>((before_barrier - start) + (now() - after_barrier)).count();
 }
 
-// The even split: chunks of equal work. A chunk after the first recomputes about a layer below
-// its own (run_chunk), so it takes a layer of cells fewer: the layers are split as if there were
-// chunks - 1 more, each chunk but the first then gives one back. Every chunk keeps a layer at
-// least (cell_slabs >= chunks); the last, which also has the top layer of points, may have only
-// that.
-int even_boundary(const GridLayout& grid, int k, int chunks) {
-  if (k == 0) return 0;
-  if (k == chunks) return grid.points.z();
-  return ((grid.cell_slabs + chunks - 1) * k + chunks - 1) / chunks - (k - 1);
+// The even split for `chunks`: regions of cell layers in proportion to their threads (the last
+// also takes the top layer of points, which has no cells), each pair meeting at its middle.
+std::vector<int> even_split(const GridLayout& grid, int chunks) {
+  std::vector<int> first(chunks + 1);
+  for (int r = 0; r < num_regions(chunks); ++r) first[2 * r] = grid.cell_slabs * 2 * r / chunks;
+  first[chunks] = grid.points.z();
+  for (int r = 0; 2 * r + 1 < chunks; ++r) first[2 * r + 1] = (first[2 * r] + first[2 * r + 2]) / 2;
+  return first;
 }
 
-// `split` if it shares this grid's layers among `chunks` (each a layer of points at least, so
-// each but the last a layer of cells), else the even split.
-void prepare_split(const GridLayout& grid, int chunks, GridSplit& split) {
-  std::vector<int>& first = split.first_layers;
-  bool fits = static_cast<int>(first.size()) == chunks + 1 && first.front() == 0 && first.back() == grid.points.z();
-  for (int k = 0; fits && k < chunks; ++k) fits = first[k] < first[k + 1];
-  if (fits && static_cast<int>(split.seconds.size()) == chunks) return;
-  if (!fits) {
-    first.resize(chunks + 1);
-    for (int k = 0; k <= chunks; ++k) first[k] = even_boundary(grid, k, chunks);
+// Whether `first` shares the grid's layers among `chunks`: regions of a layer of points at least
+// (so each but the last a layer of cells), each pair's meeting point inside its region.
+bool fits(const GridLayout& grid, const std::vector<int>& first, int chunks) {
+  if (static_cast<int>(first.size()) != chunks + 1 || first.front() != 0 || first.back() != grid.points.z()) {
+    return false;
   }
-  split.seconds.assign(chunks, 0.0);
+  for (int r = 0; r < num_regions(chunks); ++r) {
+    const Range region = region_layers(first, r, chunks);
+    if (region.begin >= region.end) return false;
+    if (threads_in_region(r, chunks) == 2 && (first[2 * r + 1] < region.begin || first[2 * r + 1] > region.end)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// `split` if it fits, else the even split.
+void prepare_split(const GridLayout& grid, int chunks, GridSplit& split) {
+  const bool fitting = fits(grid, split.first_layers, chunks);
+  if (fitting && static_cast<int>(split.seconds.size()) == num_regions(chunks)) return;
+  if (!fitting) split.first_layers = even_split(grid, chunks);
+  split.seconds.assign(num_regions(chunks), 0.0);
   split.calls = 0;
 }
 
-// Calls timed before the split may move: enough to see past a single slow step.
+// Calls timed before a region's boundary may move: enough to see past a single slow step.
 constexpr int kSplitCalls = 8;
 
-// After kSplitCalls calls, moves the one boundary between neighbouring chunks whose move by a
-// layer (from the slower to the faster, a layer costing its chunk's mean) shortens the slower of
-// the two most; none when no move would (their times differ by less than about a layer's). Each
-// chunk keeps a layer of points.
+// Records where each pair met (the layers its chunks copy in next); after kSplitCalls calls,
+// moves the one boundary between neighbouring regions whose move by a layer (from the slower to
+// the faster, a layer costing its region's mean) shortens the slower of the two most; none when
+// no move would (their times differ by less than about a layer's). Each region keeps a layer of
+// points.
 void balance_split(const ChunkResults& results, int chunks, GridSplit& split) {
-  for (int k = 0; k < chunks; ++k) split.seconds[k] += results.seconds[k];
-  if (++split.calls < kSplitCalls) return;
   std::vector<int>& first = split.first_layers;
-  int best_boundary = 0, best_step = 0;
+  for (int r = 0; 2 * r + 1 < chunks; ++r) first[2 * r + 1] = results.gathered[2 * r + 1].begin;
+  const int regions = num_regions(chunks);
+  for (int r = 0; r < regions; ++r) {
+    double seconds = 0.0;
+    for (int c = 2 * r; c < 2 * r + threads_in_region(r, chunks); ++c) seconds += results.seconds[c];
+    split.seconds[r] += seconds / threads_in_region(r, chunks);
+  }
+  if (++split.calls < kSplitCalls) return;
+  int best_region = 0, best_step = 0;
   double best_gain = 0.0;
-  for (int k = 0; k + 1 < chunks; ++k) {
+  for (int k = 0; k + 1 < regions; ++k) {
     const double lower = split.seconds[k], upper = split.seconds[k + 1];
-    const int lower_layers = first[k + 1] - first[k], upper_layers = first[k + 2] - first[k + 1];
+    const Range lower_layers = region_layers(first, k, chunks), upper_layers = region_layers(first, k + 1, chunks);
+    const int lower_count = lower_layers.end - lower_layers.begin, upper_count = upper_layers.end - upper_layers.begin;
     double gain = 0.0;
     int step = 0;
-    if (lower > upper && lower_layers > 1) {  // the lower chunk's top layer to the upper
-      gain = lower - std::max(lower - lower / lower_layers, upper + upper / upper_layers);
+    if (lower > upper && lower_count > 1) {  // the lower region's top layer to the upper
+      gain = lower - std::max(lower - lower / lower_count, upper + upper / upper_count);
       step = -1;
-    } else if (upper > lower && upper_layers > 1) {
-      gain = upper - std::max(upper - upper / upper_layers, lower + lower / lower_layers);
+    } else if (upper > lower && upper_count > 1) {
+      gain = upper - std::max(upper - upper / upper_count, lower + lower / lower_count);
       step = 1;
     }
     if (gain > best_gain) {
       best_gain = gain;
-      best_boundary = k + 1;
+      best_region = k + 1;
       best_step = step;
     }
   }
-  first[best_boundary] += best_step;
-  split.seconds.assign(chunks, 0.0);
+  if (best_step != 0) {
+    first[2 * best_region] += best_step;
+    for (int r = best_region - 1; r <= best_region; ++r) {  // the meeting points stay in their regions
+      if (threads_in_region(r, chunks) < 2) continue;
+      const Range region = region_layers(first, r, chunks);
+      first[2 * r + 1] = std::clamp(first[2 * r + 1], region.begin, region.end);
+    }
+  }
+  split.seconds.assign(regions, 0.0);
   split.calls = 0;
 }
 
@@ -613,15 +704,26 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   prepare_split(grid, team, split);
   ChunkResults results;
+  std::array<std::atomic<int>, kMaxGridThreads> unclaimed;
   bool as_planned = true;  // the runtime may give fewer threads (one without OpenMP; OMP_DYNAMIC)
   run_shares(team, [&](int chunk, int chunks, const auto& barrier) {
     if (chunk == 0) as_planned = chunks == team;  // read after the region only
-    const Range layers = chunks == team
-                             ? Range{split.first_layers[chunk], split.first_layers[chunk + 1]}
-                             : Range{even_boundary(grid, chunk, chunks), even_boundary(grid, chunk + 1, chunks)};
-    run_chunk(grid, state, with_rate, kick, arrays, layers, chunk, chunks > 1, barrier, results, forces);
+    const std::vector<int> even = chunks == team ? std::vector<int>{} : even_split(grid, chunks);
+    const std::vector<int>& first = chunks == team ? split.first_layers : even;
+    const int region = chunk / 2;
+    ChunkPlan plan;
+    plan.region = region_layers(first, region, chunks);
+    plan.copied = {first[chunk], first[chunk + 1]};
+    plan.down = sweeps_down(chunk);
+    if (split.fixed && chunks == team) {
+      plan.fixed_meet = threads_in_region(region, chunks) == 2 ? first[2 * region + 1] : plan.region.end;
+    } else {
+      plan.unclaimed = &unclaimed[region];
+      if (!plan.down) plan.unclaimed->store(plan.region.end - plan.region.begin, std::memory_order_relaxed);
+    }
+    run_chunk(grid, state, with_rate, kick, arrays, plan, chunk, chunks > 1, barrier, results, forces);
   });
-  if (team > 1 && as_planned) balance_split(results, team, split);
+  if (team > 1 && as_planned && !split.fixed) balance_split(results, team, split);
   GridForces out;
   out.crushed = results.total_crushed();
   for (double fastest_sq : results.fastest_sq) out.fastest_sq = faster(fastest_sq, out.fastest_sq);

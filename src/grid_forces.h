@@ -33,9 +33,10 @@ struct GridForces {
 /// (grid_kick.h); when cells are crushed, the caller then redoes the nodes of those cells, whose
 /// spring forces grid_spring_force() gives, with their recovery. `scratch` keeps the grid's
 /// arrays between calls; clear it before using it with another layout (entries the passes never
-/// write must stay as first set). `split` shares the layers among the threads (any split that
-/// gives each thread a layer of points, and every thread but the last a layer of cells, is used
-/// as it is; another is made even) and is balanced by the threads' times.
+/// write must stay as first set). `split` shares the layers among the threads (GridSplit: a split
+/// that gives each region a layer of points and each pair's meeting point inside its region is
+/// used as it is, another is made even); unless it is fixed, it records where each pair met and
+/// its regions are balanced by their threads' times.
 GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool with_rate, int threads,
                               std::vector<double>& scratch, GridSplit& split, Eigen::Matrix3Xd& forces,
                               const GridKick* kick = nullptr);

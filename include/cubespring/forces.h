@@ -26,13 +26,20 @@ struct ForceOptions {
   int threads = 1;      ///< threads for the force passes; the result does not depend on it
 };
 
-/// How the grid passes share a body's z-layers among threads (src/grid_forces.cpp): from an even
-/// split, a layer at a time moves to the thread whose share took less time. Results do not
-/// depend on the split.
+/// How the grid passes share a body's z-layers among threads (src/grid_forces.cpp): threads go in
+/// pairs, each pair's region of layers swept by one thread from the bottom and the other from the
+/// top, each claiming a layer as it gets to it, so that they meet where their speeds on that call
+/// bring them (an odd thread out sweeps a region alone). Between regions, from an even split, a
+/// layer at a time moves to the region whose threads took less time. Results do not depend on
+/// the split.
 struct GridSplit {
-  std::vector<int> first_layers;  ///< each thread's first z-layer of grid points, then the layer count
-  std::vector<double> seconds;    ///< each thread's time for its share [s], summed over `calls` calls
-  int calls = 0;                  ///< calls timed since the split last moved
+  /// each thread's first z-layer of grid points, then the layer count: a pair's first thread
+  /// starts its region, the second where the two met on the last call; each thread copies in the
+  /// state of its own layers
+  std::vector<int> first_layers;
+  std::vector<double> seconds;  ///< each region's time per thread [s], summed over `calls` calls
+  int calls = 0;                ///< calls timed since a region's boundary last moved
+  bool fixed = false;           ///< each pair meets where first_layers says, nothing moves (tests)
 };
 
 /// Scratch arrays of the force passes, kept between calls so that a step allocates nothing.

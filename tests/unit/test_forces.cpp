@@ -428,13 +428,47 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   }
 }
 
-// The threads' shares of the grid's layers move towards the thread that took less time
-// (GridSplit); any split gives the same bits. A box of 24 layers of cells (25 of points) on 2
-// threads: splits of 1 layer against 24, 23 against 2 and the top layer of points alone give one
-// thread's forces; a split that does not fit the grid is made even; and from 1 layer against 24
-// (or 24 against the top layer of points) the boundary moves by 2 layers at least in 6 rounds of
+// Threads share the grid's layers in pairs, one sweeping its pair's region up, the other down,
+// meeting wherever they get to (GridSplit); any meeting point gives one thread's bits. A box of 24
+// layers of cells (25 of points), damped, with a crushed cell in layer 12, in both models: on 2
+// threads every meeting point from 0 (the lower thread gathers nothing) to 25 (the upper
+// nothing); on 3 threads a pair's region below 16 and a thread alone above; on 4 two pairs.
+TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
+  LatticeDesc exact = box_lattice({14, 24, 24}, Eigen::Vector3d::Constant(0.01), notes_material(0.3));
+  exact.model = CellModel::kExactBending;
+  Result<Model> exact_model = build_model(exact);
+  ASSERT_TRUE(exact_model.ok()) << exact_model.message();
+  const std::vector<std::pair<const char*, Model>> bodies{{"paper", test::box_model({14, 24, 24}, notes_material(0.3))},
+                                                          {"exact-bending", exact_model.value()}};
+  for (const auto& [name, model] : bodies) {
+    ASSERT_NE(model.grid_layout, nullptr);
+    ASSERT_EQ(model.major_axis, 2);  // 25 z-layers of points
+    const State state = disturbed_state(model, true);
+    Loads loads;
+    loads.gravity = {0, 0, -9.81};
+    ForceWorkspace ws;
+    Eigen::Matrix3Xd one, many;
+    compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+    std::vector<std::vector<int>> splits;
+    for (int meet = 0; meet <= 25; ++meet) splits.push_back({0, meet, 25});
+    for (int meet : {0, 9, 16}) splits.push_back({0, meet, 16, 25});
+    for (int meet : {12, 25}) splits.push_back({0, 5, 12, meet, 25});
+    for (const std::vector<int>& split : splits) {
+      ws.grid_split = GridSplit{split, {}, 0, true};
+      compute_forces(model, state, loads, ForceOptions{true, static_cast<int>(split.size()) - 1}, ws, many);
+      ASSERT_EQ(ws.grid_split.first_layers, split);  // fixed: used as it was
+      EXPECT_EQ(std::memcmp(one.data(), many.data(), sizeof(double) * one.size()), 0)
+          << name << ", split " << ::testing::PrintToString(split);
+    }
+  }
+}
+
+// Without a fixed split, each pair's threads claim layers as they go and the split records where
+// they met (the layers each copies in next); a split that does not fit the grid is made even. The
+// boundary between two pairs' regions moves towards the pair that took more time per thread: from
+// 1 layer against 24 (and 24 against the top layer of points) by 2 layers at least in 6 rounds of
 // timed calls. Given one thread of the two planned (in a nested region), it does every layer.
-TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
+TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
   const Model model = test::box_model({14, 24, 24}, notes_material(0.3));
   ASSERT_NE(model.grid_layout, nullptr);
   ASSERT_EQ(model.major_axis, 2);  // 25 z-layers of points
@@ -444,17 +478,21 @@ TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
   ForceWorkspace ws;
   Eigen::Matrix3Xd one, two;
   compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
-  for (const std::vector<int>& split : {std::vector<int>{0, 1, 25}, {0, 23, 25}, {0, 24, 25}}) {
+  for (const std::vector<int>& split : {std::vector<int>{0, 1, 25}, {0, 25, 25}, {0, 0, 25}}) {
     ws.grid_split = GridSplit{split, {}, 0};
-    compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
-    ASSERT_EQ(ws.grid_split.first_layers, split);  // used as it was
-    EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0) << split[1];
+    for (int call = 0; call < 20; ++call) {
+      compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+      ASSERT_EQ(ws.grid_split.first_layers.size(), 3u);
+      EXPECT_EQ(ws.grid_split.first_layers[0], 0);
+      EXPECT_EQ(ws.grid_split.first_layers[2], 25);
+      EXPECT_GE(ws.grid_split.first_layers[1], 0);
+      EXPECT_LE(ws.grid_split.first_layers[1], 25);
+      ASSERT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0) << split[1] << ", call " << call;
+    }
   }
-  ws.grid_split = GridSplit{{0, 25, 25}, {}, 0};  // the second thread without a layer
+  ws.grid_split = GridSplit{{0, 26, 25}, {}, 0, true};  // a meeting point beyond the grid
   compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
-  ASSERT_EQ(ws.grid_split.first_layers.size(), 3u);
-  EXPECT_GT(ws.grid_split.first_layers[1], 8);
-  EXPECT_LT(ws.grid_split.first_layers[1], 17);
+  EXPECT_EQ(ws.grid_split.first_layers, (std::vector<int>{0, 12, 25}));
   EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
 
 #ifdef _OPENMP
@@ -464,7 +502,7 @@ TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
 #pragma omp parallel num_threads(2)
   {
     ForceWorkspace own;
-    own.grid_split = GridSplit{{0, 1, 25}, {}, 0};
+    own.grid_split = GridSplit{{0, 1, 25}, {}, 0, true};
     compute_forces(model, state, loads, ForceOptions{true, 2}, own, nested[omp_get_thread_num()]);
   }
   for (const Eigen::Matrix3Xd& forces : nested) {
@@ -472,11 +510,15 @@ TEST(Forces, GridSplitsMoveToTheFasterThreadAndKeepTheBits) {
     EXPECT_EQ(std::memcmp(one.data(), forces.data(), sizeof(double) * one.size()), 0) << "nested";
   }
 #endif
-  for (const int boundary : {1, 24}) {  // the upper thread, then the lower, far the slower
-    ws.grid_split = GridSplit{{0, boundary, 25}, {}, 0};
-    for (int call = 0; call < 6 * 8; ++call) compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
-    EXPECT_GE(std::abs(ws.grid_split.first_layers[1] - boundary), 2) << boundary;
-    EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0);
+  Eigen::Matrix3Xd four;
+  for (const int boundary : {1, 24}) {  // the upper pair, then the lower, far the slower
+    ws.grid_split = GridSplit{{0, 0, boundary, boundary, 25}, {}, 0};
+    for (int call = 0; call < 6 * 8; ++call) compute_forces(model, state, loads, ForceOptions{true, 4}, ws, four);
+    const std::vector<int>& first = ws.grid_split.first_layers;
+    EXPECT_GE(std::abs(first[2] - boundary), 2) << boundary;
+    EXPECT_TRUE(first[0] <= first[1] && first[1] <= first[2] && first[2] <= first[3] && first[3] <= first[4])
+        << ::testing::PrintToString(first);
+    EXPECT_EQ(std::memcmp(one.data(), four.data(), sizeof(double) * one.size()), 0);
   }
 }
 
