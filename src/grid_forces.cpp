@@ -26,6 +26,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <thread>
 
 #include "cubespring/forces.h"
 #include "force_passes.h"
@@ -44,6 +45,7 @@ inline const double* from_layer(const std::vector<double>& values, const GridLay
 }
 inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
 constexpr int kZEdges = 2;  // the family of the z-edges (grid_layout.h)
+using Clock = std::chrono::steady_clock;
 
 // Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist);
 // kUniform: a diagonal family whose stiffness is the same in every cell (SpringFamily::uniform),
@@ -510,13 +512,51 @@ struct ChunkPlan {
   }
 };
 
+// The state's layers in the grid's arrays: each chunk copies in its own and marks them done; a
+// chunk that needs a layer of another waits for every chunk's copy, once. A pair's threads need
+// each other's layers only where they meet, by when the copies are long done: a barrier after
+// the copies instead made the first thread wait for the second to start every step, time the
+// claims let it spend on layers.
+class CopyWaits {
+ public:
+  CopyWaits(std::atomic<int>* done, int chunks, const Range& own, int layers, bool timed)
+      : done_(done), chunks_(chunks), own_(own), layers_(layers), timed_(timed) {}
+
+  void mark_done(int chunk) const { done_[chunk].store(1, std::memory_order_release); }
+  /// Before a pass reads the state of layers [begin, end).
+  void need(int begin, int end) {
+    begin = std::max(begin, 0);
+    end = std::min(end, layers_);
+    if (all_done_ || begin >= end || (begin >= own_.begin && end <= own_.end)) return;
+    const auto start = timed_ ? Clock::now() : Clock::time_point{};
+    for (int c = 0; c < chunks_; ++c) {
+      for (int spins = 0; done_[c].load(std::memory_order_acquire) == 0; ++spins) {
+        if (spins > 256) std::this_thread::yield();  // the other thread may have lost its core
+      }
+    }
+    if (timed_) waited_ = Clock::now() - start;
+    all_done_ = true;
+  }
+  Clock::duration waited() const { return waited_; }
+
+ private:
+  std::atomic<int>* done_;
+  int chunks_;
+  Range own_;
+  int layers_;
+  bool timed_;
+  bool all_done_ = false;
+  Clock::duration waited_{};
+};
+
 // Sweeps up from the region's first layer while it claims layers; returns those it gathered.
 // Its first gather needs the spring forces of the layer below, another chunk's: the chunk
 // recomputes them (the springs and cells of that layer, its z-edges' tensions) rather than wait
 // for that chunk (sharing that layer instead was no faster: docs/data-layout.md).
-Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, int& crushed) {
+Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& waits, int& crushed) {
   const int first = plan.region.begin;
   if (first == plan.region.end || !plan.claim(first)) return {first, first};
+  waits.need(first - 1, first + 2);
   // the springs of the layer below that end in the first layer (nothing below the grid): its
   // z-edges and diagonals. The z-edges' tensions need the cells of that layer only (not their
   // crushed counts: those are the chunk below's); its x- and y-edges, which would need the layer
@@ -527,6 +567,7 @@ Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, int& crushed) {
   passes.edge_tensions(first - 1, kZEdges);
   int slab = first;
   do {
+    waits.need(slab + 1, slab + 3);
     // of the region's next layer, only the x- and y-edges, whose lengths the cells of this
     // layer read: its z-edges and diagonals end in no point of this region
     passes.measure(slab + 1, slab + 1 == plan.region.end ? kZEdges : kSpringFamilies);
@@ -543,14 +584,16 @@ Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, int& crushed) {
 // x- and y-edges' tensions the cells on both sides of them: the passes of the layer below come
 // first, then the x- and y-edges of this layer. The first layer's z-edges, which go up into the
 // region above, and the cells they read, it computes itself.
-Range sweep_down(const LayerPasses& passes, const ChunkPlan& plan, int& crushed) {
+Range sweep_down(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& waits, int& crushed) {
   int slab = plan.region.end - 1;
   if (slab < plan.region.begin || !plan.claim(slab)) return {slab + 1, slab + 1};
+  waits.need(slab, slab + 3);
   passes.measure(slab + 1, kZEdges);  // the x- and y-edges above, which the cells read
   passes.measure(slab);
   crushed += passes.cells(slab);
   passes.edge_tensions(slab, kZEdges);
   for (;;) {
+    waits.need(slab - 1, slab + 1);
     passes.measure(slab - 1);
     const int crushed_below = passes.cells(slab - 1);  // the claimer of slab - 1 counts them
     passes.edge_tensions(slab - 1, kZEdges);
@@ -563,31 +606,30 @@ Range sweep_down(const LayerPasses& passes, const ChunkPlan& plan, int& crushed)
   return {slab, plan.region.end};
 }
 
-// Chunk `chunk`'s share of the work (plan); barrier() waits for every chunk. Each chunk copies in
-// the state of its layers, waits for all (a chunk reads the layers beside the ones it gathers),
-// then runs the passes layer after layer in its own ring of temporaries. Then it finishes the
-// nodes of the layers it gathered, whose forces are complete once its own gathers are: the kick
-// when asked, without waiting to learn whether another chunk found a crushed cell (then the
-// caller redoes the crushed cells' corners with their recovery, from the spring forces left in
-// the grid), else the forces alone. When timed, the chunk's time for its own work, not waiting,
-// goes to results.seconds.
-template <typename Barrier>
+// Chunk `chunk`'s share of the work (plan). Each chunk copies in the state of its layers, then
+// runs the passes layer after layer in its own ring of temporaries (waiting for the other
+// chunks' copies when it first reads one of their layers: copy_done). Then it finishes the nodes
+// of the layers it gathered, whose forces are complete once its own gathers are: the kick when
+// asked, without waiting to learn whether another chunk found a crushed cell (then the caller
+// redoes the crushed cells' corners with their recovery, from the spring forces left in the
+// grid), else the forces alone. (Another chunk's layers it reads, it reads after their copies;
+// the nodes it kicks are of layers it read: so no chunk copies in a node another has kicked.)
+// When timed, the chunk's time for its own work, not waiting, goes to results.seconds.
 void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const GridKick* kick,
-               const GridScratch& scratch, const ChunkPlan& plan, int chunk, bool timed, const Barrier& barrier,
-               ChunkResults& results, Eigen::Matrix3Xd& forces) {
-  using Clock = std::chrono::steady_clock;
+               const GridScratch& scratch, const ChunkPlan& plan, int chunk, int chunks, bool timed,
+               std::atomic<int>* copy_done, ChunkResults& results, Eigen::Matrix3Xd& forces) {
   const auto now = [timed] { return timed ? Clock::now() : Clock::time_point{}; };  // one thread: nothing to balance
   const auto start = now();
   const LayerArrays a = scratch.arrays(chunk);
   const Range copied = nodes_in_layers(grid, plan.copied);
   copy_in(grid, state.positions, a, kPosition, copied);
   if (with_rate) copy_in(grid, state.velocities, a, kVelocity, copied);
-  const auto before_barrier = now();
-  barrier();
-  const auto after_barrier = now();
+  CopyWaits waits(copy_done, chunks, plan.copied, grid.points.z(), timed);
+  waits.mark_done(chunk);
   const LayerPasses passes{grid, a, with_rate};
   int crushed = 0;
-  const Range gathered = plan.down ? sweep_down(passes, plan, crushed) : sweep_up(passes, plan, crushed);
+  const Range gathered =
+      plan.down ? sweep_down(passes, plan, waits, crushed) : sweep_up(passes, plan, waits, crushed);
   results.crushed[chunk] = crushed;
   results.gathered[chunk] = gathered;
   const Range nodes = nodes_in_layers(grid, gathered);
@@ -598,8 +640,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   } else {
     copy_out(grid, a, kForce, nodes, forces);
   }
-  results.seconds[chunk] =
-      std::chrono::duration<double>((before_barrier - start) + (now() - after_barrier)).count();
+  results.seconds[chunk] = std::chrono::duration<double>(now() - start - waits.waited()).count();
 }
 
 // The even split for `chunks`: regions of cell layers in proportion to their threads (the last
@@ -704,10 +745,18 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
   if (forces.cols() != num_nodes) forces.resize(3, num_nodes);
   prepare_split(grid, team, split);
   ChunkResults results;
-  std::array<std::atomic<int>, kMaxGridThreads> unclaimed;
+  // shared by the chunks: each region's unclaimed layers, each chunk's copy done (set before the
+  // threads start)
+  std::array<std::atomic<int>, kMaxGridThreads> unclaimed, copy_done;
+  for (int r = 0; r < num_regions(team); ++r) {
+    const Range region = region_layers(split.first_layers, r, team);
+    unclaimed[r].store(region.end - region.begin, std::memory_order_relaxed);
+  }
+  for (int c = 0; c < team; ++c) copy_done[c].store(0, std::memory_order_relaxed);
   bool as_planned = true;  // the runtime may give fewer threads (one without OpenMP; OMP_DYNAMIC)
-  run_shares(team, [&](int chunk, int chunks, const auto& barrier) {
+  run_shares(team, [&](int chunk, int chunks, const auto&) {
     if (chunk == 0) as_planned = chunks == team;  // read after the region only
+    // given fewer threads than planned: the even split for them, each pair meeting at its middle
     const std::vector<int> even = chunks == team ? std::vector<int>{} : even_split(grid, chunks);
     const std::vector<int>& first = chunks == team ? split.first_layers : even;
     const int region = chunk / 2;
@@ -715,13 +764,15 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
     plan.region = region_layers(first, region, chunks);
     plan.copied = {first[chunk], first[chunk + 1]};
     plan.down = sweeps_down(chunk);
-    if (split.fixed && chunks == team) {
-      plan.fixed_meet = threads_in_region(region, chunks) == 2 ? first[2 * region + 1] : plan.region.end;
+    if ((split.fixed || chunks != team) && threads_in_region(region, chunks) == 2) {
+      plan.fixed_meet = first[2 * region + 1];
+    } else if (split.fixed || chunks != team) {
+      plan.fixed_meet = plan.region.end;
     } else {
       plan.unclaimed = &unclaimed[region];
-      if (!plan.down) plan.unclaimed->store(plan.region.end - plan.region.begin, std::memory_order_relaxed);
     }
-    run_chunk(grid, state, with_rate, kick, arrays, plan, chunk, chunks > 1, barrier, results, forces);
+    run_chunk(grid, state, with_rate, kick, arrays, plan, chunk, chunks, chunks > 1, copy_done.data(), results,
+              forces);
   });
   if (team > 1 && as_planned && !split.fixed) balance_split(results, team, split);
   GridForces out;

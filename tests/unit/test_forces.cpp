@@ -433,6 +433,8 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
 // layers of cells (25 of points), damped, with a crushed cell in layer 12, in both models: on 2
 // threads every meeting point from 0 (the lower thread gathers nothing) to 25 (the upper
 // nothing); on 3 threads a pair's region below 16 and a thread alone above; on 4 two pairs.
+// Then states that change from call to call, with meeting points that make a thread read the
+// other's layers at once.
 TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
   LatticeDesc exact = box_lattice({14, 24, 24}, Eigen::Vector3d::Constant(0.01), notes_material(0.3));
   exact.model = CellModel::kExactBending;
@@ -459,6 +461,22 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
       ASSERT_EQ(ws.grid_split.first_layers, split);  // fixed: used as it was
       EXPECT_EQ(std::memcmp(one.data(), many.data(), sizeof(double) * one.size()), 0)
           << name << ", split " << ::testing::PrintToString(split);
+    }
+    // a thread that copies in one layer reads the other's next ones at once: it must wait for
+    // their copy, not read those of the state before (the states alternate)
+    State moved = state;
+    moved.positions.array() += 2e-4;
+    Eigen::Matrix3Xd moved_one;
+    compute_forces(model, moved, loads, ForceOptions{true, 1}, ws, moved_one);
+    for (const std::vector<int>& split : {std::vector<int>{0, 1, 25}, {0, 24, 25}}) {
+      ws.grid_split = GridSplit{split, {}, 0, true};
+      for (int call = 0; call < 20; ++call) {
+        const bool odd = call % 2 == 1;
+        compute_forces(model, odd ? moved : state, loads, ForceOptions{true, 2}, ws, many);
+        const Eigen::Matrix3Xd& expected = odd ? moved_one : one;
+        ASSERT_EQ(std::memcmp(expected.data(), many.data(), sizeof(double) * one.size()), 0)
+            << name << ", split " << split[1] << ", call " << call;
+      }
     }
   }
 }
