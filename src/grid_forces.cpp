@@ -12,8 +12,8 @@
 //      pass 2 (from the corner positions the crushed test reads), each face's difference of
 //      its two cells' coefficients in pass 3a, its edge forces in pass 3b;
 //   4. points: force = sum over families of the force of the springs that start there minus that
-//      of those that end there (a gather: no two points write the same place, so threads share
-//      nothing and the sums do not depend on the thread count).
+//      of those that end there (a gather: no two points write the same place, so threads write
+//      nothing another writes, and the sums do not depend on the thread count).
 // The passes run z-layer by z-layer, each as soon as its inputs are there, and keep their
 // temporaries for the 3 layers they read at once only (a ring per thread), so that the
 // temporaries stay in cache and only the state, forces and model stream through it.
@@ -513,10 +513,12 @@ struct ChunkPlan {
 };
 
 // The state's layers in the grid's arrays: each chunk copies in its own and marks them done; a
-// chunk that needs a layer of another waits for every chunk's copy, once. A pair's threads need
-// each other's layers only where they meet, by when the copies are long done: a barrier after
-// the copies instead made the first thread wait for the second to start every step, time the
-// claims let it spend on layers.
+// chunk that needs a layer of another waits for every chunk's copy, once. On two threads the
+// pair's threads need each other's layers only where they meet, by when the copies are long
+// done: a barrier after the copies instead made the first thread wait for the second to start
+// every step, time the claims let it spend on layers. (With more, a region's threads read their
+// neighbour regions' layers at once, and wait as at a barrier.) A pass reads the state up to a
+// point into the layer after the next (a diagonal from the last point of a layer).
 class CopyWaits {
  public:
   CopyWaits(std::atomic<int>* done, int chunks, const Range& own, int layers, bool timed)
@@ -556,7 +558,7 @@ class CopyWaits {
 Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& waits, int& crushed) {
   const int first = plan.region.begin;
   if (first == plan.region.end || !plan.claim(first)) return {first, first};
-  waits.need(first - 1, first + 2);
+  waits.need(first - 1, first + 3);  // a diagonal reaches a point into the layer after next
   // the springs of the layer below that end in the first layer (nothing below the grid): its
   // z-edges and diagonals. The z-edges' tensions need the cells of that layer only (not their
   // crushed counts: those are the chunk below's); its x- and y-edges, which would need the layer
@@ -567,7 +569,7 @@ Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& wait
   passes.edge_tensions(first - 1, kZEdges);
   int slab = first;
   do {
-    waits.need(slab + 1, slab + 3);
+    waits.need(slab + 1, slab + 4);
     // of the region's next layer, only the x- and y-edges, whose lengths the cells of this
     // layer read: its z-edges and diagonals end in no point of this region
     passes.measure(slab + 1, slab + 1 == plan.region.end ? kZEdges : kSpringFamilies);
@@ -593,7 +595,7 @@ Range sweep_down(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& wa
   crushed += passes.cells(slab);
   passes.edge_tensions(slab, kZEdges);
   for (;;) {
-    waits.need(slab - 1, slab + 1);
+    waits.need(slab - 1, slab + 2);
     passes.measure(slab - 1);
     const int crushed_below = passes.cells(slab - 1);  // the claimer of slab - 1 counts them
     passes.edge_tensions(slab - 1, kZEdges);

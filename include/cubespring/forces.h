@@ -39,7 +39,9 @@ struct GridSplit {
   std::vector<int> first_layers;
   std::vector<double> seconds;  ///< each region's time per thread [s], summed over `calls` calls
   int calls = 0;                ///< calls timed since a region's boundary last moved
-  bool fixed = false;           ///< each pair meets where first_layers says, nothing moves (tests)
+  /// each pair meets where first_layers says and nothing moves (tests; a split that does not
+  /// fit the grid is still made even)
+  bool fixed = false;
 };
 
 /// Scratch arrays of the force passes, kept between calls so that a step allocates nothing.
