@@ -428,6 +428,23 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   }
 }
 
+// The body of the tests of the grid's threads: a box swept by 25 z-layers of points, disturbed
+// (with a crushed cell) and under gravity, and its forces on one thread.
+struct LayeredBody {
+  State state;
+  Loads loads;
+  Eigen::Matrix3Xd one_thread;
+};
+LayeredBody layered_body(const Model& model) {
+  EXPECT_NE(model.grid_layout, nullptr);
+  EXPECT_EQ(model.major_axis, 2);  // 25 z-layers of points
+  LayeredBody body{disturbed_state(model, true), Loads{}, Eigen::Matrix3Xd{}};
+  body.loads.gravity = {0, 0, -9.81};
+  ForceWorkspace ws;
+  compute_forces(model, body.state, body.loads, ForceOptions{true, 1}, ws, body.one_thread);
+  return body;
+}
+
 // Threads share the grid's layers in pairs, one sweeping its pair's region up, the other down,
 // meeting wherever they get to (GridSplit); any meeting point gives one thread's bits. A box of 24
 // layers of cells (25 of points), damped, with a crushed cell in layer 12, in both models: on 2
@@ -445,14 +462,10 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
   const std::vector<std::pair<const char*, Model>> bodies{{"paper", test::box_model({14, 24, 24}, damped)},
                                                           {"exact-bending", exact_model.value()}};
   for (const auto& [name, model] : bodies) {
-    ASSERT_NE(model.grid_layout, nullptr);
-    ASSERT_EQ(model.major_axis, 2);  // 25 z-layers of points
-    const State state = disturbed_state(model, true);
-    Loads loads;
-    loads.gravity = {0, 0, -9.81};
+    const auto [state, loads, one] = layered_body(model);
     ForceWorkspace ws;
-    Eigen::Matrix3Xd one, many;
-    compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+    Eigen::Matrix3Xd many;
+    compute_forces(model, state, loads, ForceOptions{true, 1}, ws, many);  // a split set from now on stays
     std::vector<std::vector<int>> splits;
     for (int meet = 0; meet <= 25; ++meet) splits.push_back({0, meet, 25});
     for (int meet : {0, 9, 16}) splits.push_back({0, meet, 16, 25});
@@ -490,14 +503,10 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
 // timed calls. Given one thread of the two planned (in a nested region), it does every layer.
 TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
   const Model model = test::box_model({14, 24, 24}, notes_material(0.3));
-  ASSERT_NE(model.grid_layout, nullptr);
-  ASSERT_EQ(model.major_axis, 2);  // 25 z-layers of points
-  const State state = disturbed_state(model, true);
-  Loads loads;
-  loads.gravity = {0, 0, -9.81};
+  const auto [state, loads, one] = layered_body(model);
   ForceWorkspace ws;
-  Eigen::Matrix3Xd one, two;
-  compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
+  Eigen::Matrix3Xd two;
+  compute_forces(model, state, loads, ForceOptions{true, 1}, ws, two);  // a split set from now on stays
   for (const std::vector<int>& split : {std::vector<int>{0, 1, 25}, {0, 25, 25}, {0, 0, 25}}) {
     ws.grid_split = GridSplit{split, {}, 0};
     for (int call = 0; call < 20; ++call) {
