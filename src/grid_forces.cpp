@@ -48,8 +48,9 @@ constexpr int kZEdges = 2;  // the family of the z-edges (grid_layout.h)
 using Clock = std::chrono::steady_clock;
 
 // Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist);
-// kUniform: a diagonal family whose stiffness is the same in every cell (SpringFamily::uniform),
-// taken times the cell's occupancy (the same bits) to spare a stream of per-point values.
+// kUniform: a family whose springs have a cell's share of stiffness and damping times their
+// number of cells (SpringFamily::uniform; the same bits), counted from the cells' occupancy,
+// which the cell pass streams anyway: a stream of per-point values spared, two with damping.
 template <bool kWithRate, bool kDiagonal, bool kKeepVector, bool kUniform = false>
 CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
@@ -73,7 +74,12 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
   double* __restrict vector_z = a.out(kEdgeVector + 3 * e + 2, slab);
   const double* __restrict stiffness = from_layer(family.stiffness, grid, slab);
   const double* __restrict damping = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;
-  const double* __restrict occupied = from_layer(grid.cell_occupied, grid, slab);
+  // an edge's cells: the one at its first point and those a step back along b, c and both
+  const double* __restrict occupied = grid.occupied_from_layer(slab);
+  const int back_b = f == 0 ? grid.stride_y : 1, back_c = f == 2 ? grid.stride_y : grid.stride_z;
+  const double* __restrict occupied_b = occupied - back_b;
+  const double* __restrict occupied_c = occupied - back_c;
+  const double* __restrict occupied_bc = occupied - back_b - back_c;
   const double cell_stiffness = family.cell_stiffness, cell_damping = family.cell_damping;
   const double rest = family.rest_length;
   const double degenerate = kDegenerateLengthFraction * rest;
@@ -85,11 +91,12 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
     const double ez = z[g + to] - z[g + from];
     const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
     const double inverse = length > degenerate ? 1.0 / length : 0.0;
-    double own = (kUniform ? occupied[g] * cell_stiffness : stiffness[g]) * (length - rest);
+    const double cells = kDiagonal ? occupied[g] : (occupied[g] + occupied_b[g]) + (occupied_c[g] + occupied_bc[g]);
+    double own = (kUniform ? cells * cell_stiffness : stiffness[g]) * (length - rest);
     if constexpr (kWithRate) {
       const double rate = ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey +
                            (vz[g + to] - vz[g + from]) * ez) * inverse;
-      own += (kUniform ? occupied[g] * cell_damping : damping[g]) * rate;
+      own += (kUniform ? cells * cell_damping : damping[g]) * rate;
       if constexpr (!kDiagonal) rate_out[g] = rate;
     }
     if constexpr (kDiagonal) {
@@ -115,14 +122,16 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
 template <bool kWithRate>
 void measure_springs(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges or cells: its zeros stay
-  if (f >= kEdgeFamilies && grid.families[f].uniform) {
-    measure_family<kWithRate, true, false, true>(grid, f, slab, a);
-  } else if (f >= kEdgeFamilies) {
-    measure_family<kWithRate, true, false>(grid, f, slab, a);
+  const bool uniform = grid.families[f].uniform;
+  if (f >= kEdgeFamilies) {
+    uniform ? measure_family<kWithRate, true, false, true>(grid, f, slab, a)
+            : measure_family<kWithRate, true, false, false>(grid, f, slab, a);
   } else if (grid.has_twist) {
-    measure_family<kWithRate, false, true>(grid, f, slab, a);
+    uniform ? measure_family<kWithRate, false, true, true>(grid, f, slab, a)
+            : measure_family<kWithRate, false, true, false>(grid, f, slab, a);
   } else {
-    measure_family<kWithRate, false, false>(grid, f, slab, a);
+    uniform ? measure_family<kWithRate, false, false, true>(grid, f, slab, a)
+            : measure_family<kWithRate, false, false, false>(grid, f, slab, a);
   }
 }
 
@@ -182,7 +191,7 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
   const double uxx = grid.uniform_correction[0], uyy = grid.uniform_correction[1], uzz = grid.uniform_correction[2];
   const double uxy = grid.uniform_correction[3], uxz = grid.uniform_correction[4], uyz = grid.uniform_correction[5];
   const double uniform_beta = grid.uniform_beta;
-  const double* __restrict occupied = from_layer(grid.cell_occupied, grid, slab);
+  const double* __restrict occupied = grid.occupied_from_layer(slab);
   double* __restrict tension_x = a.out(kCellTension, slab);
   double* __restrict tension_y = a.out(kCellTension + 1, slab);
   double* __restrict tension_z = a.out(kCellTension + 2, slab);

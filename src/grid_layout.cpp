@@ -39,18 +39,30 @@ void set_uniform_cells(const Model& model, GridLayout& grid) {
   if (!grid.cell_beta.empty()) grid.uniform_beta = grid.cell_beta[first];
 }
 
-// Whether every diagonal of family f has the stiffness and damping of the first occupied cell's.
-void set_uniform_diagonals(GridLayout& grid, int f) {
+// Whether every spring of family f has the stiffness and damping of one cell's share times its
+// number of cells (to the bit): a diagonal's share is that of the first occupied cell, an
+// edge's that of the first edge of one cell (every body has one: the x-edge at the far y and z
+// side of its last cell, for one).
+void set_uniform_family(GridLayout& grid, int f) {
   SpringFamily& family = grid.families[f];
-  const auto& occupied = grid.cell_occupied;
-  const auto first = std::find(occupied.begin(), occupied.end(), 1.0) - occupied.begin();
-  family.cell_stiffness = family.stiffness[first];
-  family.cell_damping = family.damping.empty() ? 0.0 : family.damping[first];
-  family.uniform = true;
-  for (std::size_t p = 0; p < occupied.size() && family.uniform; ++p) {
-    family.uniform = family.stiffness[p] == occupied[p] * family.cell_stiffness &&
-                      (family.damping.empty() || family.damping[p] == occupied[p] * family.cell_damping);
+  const bool diagonal = f >= kEdgeFamilies;
+  const auto cells = [&](int point) {
+    return diagonal ? grid.cell_occupied[grid.occupied_padding() + point] : grid.edge_cells(f, point);
+  };
+  family.uniform = false;
+  int one_cell = 0;
+  while (one_cell < grid.num_points && cells(one_cell) != 1) ++one_cell;
+  if (one_cell == grid.num_points) return;
+  family.cell_stiffness = family.stiffness[one_cell];
+  family.cell_damping = family.damping.empty() ? 0.0 : family.damping[one_cell];
+  for (int p = 0; p < grid.num_points; ++p) {
+    const double count = cells(p);
+    if (family.stiffness[p] != count * family.cell_stiffness ||
+        (!family.damping.empty() && family.damping[p] != count * family.cell_damping)) {
+      return;
+    }
   }
+  family.uniform = true;
 }
 
 }  // namespace
@@ -148,7 +160,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   }
 
   for (auto& coefficient : grid.correction) coefficient.assign(size, 0.0);
-  grid.cell_occupied.assign(size, 0.0);
+  grid.cell_occupied.assign(size + grid.occupied_padding(), 0.0);
   if (model.has_stiffness_damping) grid.cell_beta.assign(size, 0.0);
   grid.has_twist = model.has_twist;
   if (model.has_twist) grid.cell_twist.assign(size, 0.0);
@@ -161,14 +173,14 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
     if ((d - d.transpose()).cwiseAbs().maxCoeff() > 1e-12 * d.cwiseAbs().maxCoeff()) return nullptr;
     const double coefficients[6] = {d(0, 0), d(1, 1), d(2, 2), d(0, 1), d(0, 2), d(1, 2)};
     for (int i = 0; i < 6; ++i) grid.correction[i][point] = coefficients[i];
-    grid.cell_occupied[point] = 1.0;
+    grid.cell_occupied[grid.occupied_padding() + point] = 1.0;
     if (model.has_twist) grid.cell_twist[point] = model.cell_twist_stiffness[c];
     if (model.has_stiffness_damping) {
       grid.cell_beta[point] = model.materials[model.cell_material[c]].stiffness_damping;
     }
   }
   set_uniform_cells(model, grid);
-  for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) set_uniform_diagonals(grid, f);
+  for (int f = 0; f < kSpringFamilies; ++f) set_uniform_family(grid, f);
   return layout;
 }
 

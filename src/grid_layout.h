@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -27,8 +28,9 @@ struct SpringFamily {
   double rest_length = 0;           ///< the same for every spring of the family [m]
   std::vector<double> stiffness;    ///< per point [N/m]; 0 where the body has no such spring
   std::vector<double> damping;      ///< beta times stiffness [N s/m]; empty without stiffness damping
-  /// A diagonal family of a body of one material: stiffness and damping are these times
-  /// cell_occupied at every point, and the passes read the cells' occupancy instead.
+  /// A family of a body of one material: stiffness and damping are these times the number of
+  /// the spring's cells in the body (a diagonal's 1, an edge's 1 to 4; GridLayout::edge_cells)
+  /// at every point, and the passes count them from the cells' occupancy instead.
   bool uniform = false;
   double cell_stiffness = 0.0, cell_damping = 0.0;
 };
@@ -56,7 +58,9 @@ struct GridLayout {
   // cells, indexed by the point of their corner 0 (zero outside the body)
   std::array<std::vector<double>, 6> correction;  ///< D: xx, yy, zz, xy, xz, yz [Pa]
   std::vector<double> cell_beta;        ///< the material's beta [s]; empty without stiffness damping
-  std::vector<double> cell_occupied;    ///< 1 for a cell of the body, else 0
+  /// 1 for a cell of the body, else 0; from index occupied_padding() (zeros before it: the cells
+  /// around an edge lie up to a step back along each other axis, the layer below the grid too)
+  std::vector<double> cell_occupied;
   std::vector<double> cell_twist;       ///< zeta G [Pa] (exact-bending model); empty without twist
   bool has_twist = false;
   int cell_rows = 0, cell_slabs = 0;    ///< cells per x-row are whole rows too
@@ -66,6 +70,19 @@ struct GridLayout {
   std::array<double, 6> uniform_correction{};  ///< [Pa]
   double uniform_twist = 0.0;                  ///< [Pa]
   double uniform_beta = 0.0;                   ///< [s]
+
+  int occupied_padding() const { return stride_z + stride_y + 1; }
+  /// cell_occupied from the first point of layer `slab`.
+  const double* occupied_from_layer(int slab) const {
+    return cell_occupied.data() + occupied_padding() + static_cast<std::ptrdiff_t>(slab) * stride_z;
+  }
+  /// The cells of the body that share the edge of family f (x, y or z) at `point`: the cell
+  /// whose corner 0 is there and those a step back along either other axis, or both.
+  int edge_cells(int f, int point) const {
+    const int b = f == 0 ? stride_y : 1, c = f == 2 ? stride_y : stride_z;
+    const double* at = cell_occupied.data() + occupied_padding() + point;
+    return static_cast<int>((at[0] + at[-b]) + (at[-c] + at[-b - c]));
+  }
 
   /// The point at a model's grid index.
   int point(const Eigen::Vector3i& index) const {

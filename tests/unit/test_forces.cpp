@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "cubespring/forces.h"
+#include "grid_layout.h"
 #include "test_support.h"
 
 namespace cubespring {
@@ -336,34 +337,88 @@ TEST(Forces, ABoxNumberedAlongXHasTheForcesOfItsTurnedCopy) {
   }
 }
 
-// A body of one material takes its cells' coefficients and diagonals' stiffness as constants
-// on the grid (grid_layout.h: uniform_cells, SpringFamily::uniform), but only while every cell
-// has them: after one diagonal's stiffness, or its damping, or one cell's correction, or its
-// twist is changed (and update_grid_layout), the grid passes still give the lists' forces,
-// which the change moves by far more than the rounding.
-TEST(Forces, GridPassesTakeAChangedDiagonalOrCell) {
+// A body of one material takes its cells' coefficients and springs' stiffness as constants on
+// the grid (grid_layout.h: uniform_cells, SpringFamily::uniform; an edge's share times its
+// cells), and they give the bits of the per-point arrays: a damped box and a box with holes
+// in both models, with a crushed cell. Two materials keep the edges' arrays.
+TEST(Forces, OneMaterialsConstantsGiveThePerPointArraysBits) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
-  enum class Change { kDiagonalStiffness, kDiagonalDamping, kCellCorrection, kCellTwist };
+  damped.mass_damping = 2.0;
+  LatticeDesc holes = box_lattice({9, 7, 6}, Eigen::Vector3d::Constant(0.01), damped);
+  std::vector<Eigen::Vector3i> kept;
+  for (const Eigen::Vector3i& cell : holes.cells) {
+    if ((cell.x() * 7 + cell.y() * 3 + cell.z() * 5) % 4 != 0 || cell.x() == 0) kept.push_back(cell);
+  }
+  holes.cells = kept;
+  for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+    for (LatticeDesc desc : {box_lattice({6, 5, 4}, Eigen::Vector3d::Constant(0.01), damped), holes}) {
+      desc.model = cell_model;
+      Result<Model> built = build_model(desc);
+      ASSERT_TRUE(built.ok()) << built.message();
+      const Model& constants = built.value();
+      const std::string what = std::string(cell_model_name(cell_model)) + ", " + std::to_string(desc.cells.size()) + " cells";
+      ASSERT_NE(constants.grid_layout, nullptr) << what;
+      ASSERT_TRUE(constants.grid_layout->uniform_cells) << what;
+      for (const SpringFamily& family : constants.grid_layout->families) ASSERT_TRUE(family.uniform) << what;
+      auto arrays = std::make_shared<GridLayout>(*constants.grid_layout);
+      arrays->uniform_cells = false;
+      for (SpringFamily& family : arrays->families) family.uniform = false;
+      Model per_point = constants;
+      per_point.grid_layout = arrays;
+      for (const bool crushed : {false, true}) {
+        const State state = disturbed_state(constants, crushed);
+        ForceWorkspace ws_constants, ws_arrays;
+        Eigen::Matrix3Xd by_constants, by_arrays;
+        compute_forces(constants, state, Loads{}, ForceOptions{true, 1}, ws_constants, by_constants);
+        compute_forces(per_point, state, Loads{}, ForceOptions{true, 1}, ws_arrays, by_arrays);
+        ASSERT_GT(by_arrays.cwiseAbs().maxCoeff(), 0.0) << what;
+        EXPECT_TRUE(by_constants == by_arrays) << what << (crushed ? ", crushed" : "");
+      }
+    }
+  }
+  LatticeDesc inclusion = box_lattice({6, 5, 4}, Eigen::Vector3d::Constant(0.01), damped);
+  Material stiff = damped;
+  stiff.young_modulus *= 20.0;
+  inclusion.materials.push_back(stiff);
+  for (const Eigen::Vector3i& cell : inclusion.cells) inclusion.cell_material.push_back(cell == Eigen::Vector3i(2, 2, 2) ? 1 : 0);
+  Result<Model> built = build_model(inclusion);
+  ASSERT_TRUE(built.ok()) << built.message();
+  ASSERT_NE(built.value().grid_layout, nullptr);
+  for (int f = 0; f < kSpringFamilies; ++f) EXPECT_EQ(built.value().grid_layout->families[f].uniform, false) << f;
+}
+
+// ... but only while every cell has them: after one diagonal's or edge's stiffness, or its
+// damping, or one cell's correction, or its twist is changed (and update_grid_layout), the grid
+// passes still give the lists' forces, which the change moves by far more than the rounding.
+TEST(Forces, GridPassesTakeAChangedSpringOrCell) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  enum class Change { kDiagonalStiffness, kDiagonalDamping, kEdgeStiffness, kEdgeDamping, kCellCorrection, kCellTwist };
   for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
     LatticeDesc desc = box_lattice({5, 4, 3}, Eigen::Vector3d::Constant(0.01), damped);
     desc.model = cell_model;
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     const Model& before = built.value();
+    const auto axes_spanned = [&](int spring) {
+      return (before.node_grid_index[before.spring_nodes[spring][1]] -
+              before.node_grid_index[before.spring_nodes[spring][0]]).cwiseAbs().sum();
+    };
     int diagonal = 0;  // the first spring whose ends differ along every axis
-    while ((before.node_grid_index[before.spring_nodes[diagonal][1]] -
-            before.node_grid_index[before.spring_nodes[diagonal][0]]).cwiseAbs().minCoeff() == 0) {
-      ++diagonal;
-    }
-    for (const Change change : {Change::kDiagonalStiffness, Change::kDiagonalDamping, Change::kCellCorrection,
-                                Change::kCellTwist}) {
+    while (axes_spanned(diagonal) != 3) ++diagonal;
+    int edge = before.num_springs() / 2;  // an edge inside the body
+    while (axes_spanned(edge) != 1) ++edge;
+    for (const Change change : {Change::kDiagonalStiffness, Change::kDiagonalDamping, Change::kEdgeStiffness,
+                                Change::kEdgeDamping, Change::kCellCorrection, Change::kCellTwist}) {
       if (change == Change::kCellTwist && !before.has_twist) continue;
       Model changed = before;
       const int cell = middle_cell(changed);
       switch (change) {
         case Change::kDiagonalStiffness: changed.spring_stiffness[diagonal] *= 3.0; break;
         case Change::kDiagonalDamping: changed.spring_damping[diagonal] *= 3.0; break;
+        case Change::kEdgeStiffness: changed.spring_stiffness[edge] *= 3.0; break;
+        case Change::kEdgeDamping: changed.spring_damping[edge] *= 3.0; break;
         case Change::kCellCorrection: changed.cell_correction[cell] *= 1.5; break;
         case Change::kCellTwist: changed.cell_twist_stiffness[cell] *= 1.5; break;
       }
