@@ -213,6 +213,11 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
     if (Status s = camera->vector3("target", render.camera.target); !s) return s;
     if (Status s = camera->vector3("up", render.camera.up); !s) return s;
     if (Status s = camera->positive("fov", render.camera.vertical_fov_degrees); !s) return s;
+    if (!(render.camera.vertical_fov_degrees < 180.0)) {
+      std::ostringstream got;
+      got << render.camera.vertical_fov_degrees;
+      return camera->error("fov", "must be below 180 degrees, got " + got.str());
+    }
     if (Status s = validate(render.camera); !s) return camera->error_here("\"" + fields.name_of("camera") + "\": " + s.message());
   }
   if (Status s = read_lights(fields, render); !s) return s;
@@ -243,17 +248,33 @@ Status check_counts(const JsonFields& fields, const Scene& scene) {
     out << value;
     return out.str();
   };
+  // a count that a defaulted time_step or frame_rate makes too large is the duration's fault
+  const bool step_given = fields.has("time_step"), rate_given = fields.has("frame_rate");
+  const std::string step = text(scene.time_step) + " s", rate = text(scene.frame_rate) + " frames/s";
   if (scene.time_step > scene.duration) {
-    return fields.error("time_step", "of " + text(scene.time_step) + " s is longer than the scene's duration of " +
+    if (!step_given) {
+      return fields.error("duration", "of " + text(scene.duration) + " s is shorter than the default time step of " +
+                                          step + " (give a \"time_step\")");
+    }
+    return fields.error("time_step", "of " + step + " is longer than the scene's duration of " +
                                          text(scene.duration) + " s");
   }
   if (scene.duration / scene.time_step > kMaxSteps || scene.settle_time / scene.time_step > kMaxSteps) {
-    return fields.error("time_step", "of " + text(scene.time_step) + " s gives more than " + text(kMaxSteps) +
-                                         " steps over the settle time and duration of " +
-                                         text(scene.settle_time) + " s and " + text(scene.duration) + " s");
+    const std::string span = "the settle time and duration of " + text(scene.settle_time) + " s and " +
+                             text(scene.duration) + " s";
+    if (!step_given) {
+      return fields.error(scene.settle_time > scene.duration ? "settle_time" : "duration",
+                          "makes more than " + text(kMaxSteps) + " steps of the default time step of " + step +
+                              " (" + span + ")");
+    }
+    return fields.error("time_step", "of " + step + " gives more than " + text(kMaxSteps) + " steps over " + span);
   }
   if (scene.frames == 0 && scene.duration * scene.frame_rate + 1.0 > kMaxFrames) {
-    return fields.error("frame_rate", "of " + text(scene.frame_rate) + " frames/s gives more than " + text(kMaxFrames) +
+    if (!rate_given) {
+      return fields.error("duration", "of " + text(scene.duration) + " s makes more than " + text(kMaxFrames) +
+                                          " frames at the default frame rate of " + rate);
+    }
+    return fields.error("frame_rate", "of " + rate + " gives more than " + text(kMaxFrames) +
                                           " frames over the duration of " + text(scene.duration) + " s");
   }
   return {};

@@ -3,6 +3,7 @@
 #include "cubespring/render/camera.h"
 
 #include <cmath>
+#include <sstream>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -15,7 +16,9 @@ constexpr double kPi = 3.14159265358979323846;
 bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 std::string text(const Eigen::Vector3d& v) {
-  return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
+  std::ostringstream out;
+  out << "(" << v.x() << ", " << v.y() << ", " << v.z() << ")";
+  return out.str();
 }
 
 }  // namespace
@@ -56,27 +59,27 @@ Eigen::Vector2d Camera::project(const Eigen::Vector3d& point, int width, int hei
 }
 
 Status validate(const Camera& camera) {
-  if (!finite(camera.position)) return Status::error("Camera::position is not finite: " + text(camera.position));
-  if (!finite(camera.target)) return Status::error("Camera::target is not finite: " + text(camera.target));
-  if (!finite(camera.up)) return Status::error("Camera::up is not finite: " + text(camera.up));
+  if (!finite(camera.position)) return Status::error("camera.position is not finite: " + text(camera.position));
+  if (!finite(camera.target)) return Status::error("camera.target is not finite: " + text(camera.target));
+  if (!finite(camera.up)) return Status::error("camera.up is not finite: " + text(camera.up));
   if (!(camera.vertical_fov_degrees > 0.0 && camera.vertical_fov_degrees < 180.0)) {
-    return Status::error("Camera::vertical_fov_degrees is " + std::to_string(camera.vertical_fov_degrees) +
+    return Status::error("camera.vertical_fov_degrees is " + std::to_string(camera.vertical_fov_degrees) +
                          ": it must be between 0 and 180 degrees (exclusive)");
   }
   if (!(camera.near > 0.0 && std::isfinite(camera.near))) {
-    return Status::error("Camera::near is " + std::to_string(camera.near) + " m: it must be > 0");
+    return Status::error("camera.near is " + std::to_string(camera.near) + " m: it must be > 0");
   }
   if (!(camera.far > camera.near && std::isfinite(camera.far))) {
-    return Status::error("Camera::far is " + std::to_string(camera.far) + " m: it must be finite and > near (" +
+    return Status::error("camera.far is " + std::to_string(camera.far) + " m: it must be finite and > near (" +
                          std::to_string(camera.near) + " m)");
   }
   const Eigen::Vector3d sight = camera.target - camera.position;
   if (!(sight.norm() > 0.0)) {
-    return Status::error("Camera::position equals Camera::target " + text(camera.target) +
+    return Status::error("camera.position equals camera.target " + text(camera.target) +
                          ": the camera needs a direction to look in");
   }
   if (!(sight.normalized().cross(camera.up).norm() > 1e-9 * camera.up.norm())) {
-    return Status::error("Camera::up " + text(camera.up) + " is zero or along the line of sight " + text(sight) +
+    return Status::error("camera.up " + text(camera.up) + " is zero or along the line of sight " + text(sight) +
                          ": choose an up direction across it");
   }
   return {};

@@ -243,7 +243,8 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
     out << "a grid of " << span.x() << " x " << span.y() << " x " << span.z() << " cells of "
         << describe_vector(result.cell_size) << " m needs about " << estimate / 1e6
         << " MB, over the memory limit of " << static_cast<double>(limit) / 1e6
-        << " MB: use a larger cell size or fewer cells across (or raise the limit)";
+        << (options.max_memory_bytes > 0 ? " MB given" : " MB (half of this machine's memory)")
+        << ": use a larger cell size or fewer cells across";
     return Status::error(out.str());
   }
   // the grid's cells and samples are indexed by int

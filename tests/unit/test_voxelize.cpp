@@ -302,7 +302,7 @@ TEST(Voxelize, RefusesBadInputWithTheValueAtFault) {
   VoxelizeOptions small_limit = cell_size(0.001);
   small_limit.max_memory_bytes = 1000000;
   const std::string memory = error(sphere, small_limit);
-  EXPECT_NE(memory.find("memory limit of 1 MB"), std::string::npos) << memory;
+  EXPECT_NE(memory.find("memory limit of 1 MB given: use a larger cell size"), std::string::npos) << memory;
   EXPECT_NE(memory.find("2002 x 2002 x 2002"), std::string::npos) << memory;
   // an absurd grid is refused before anything is allocated, whatever the limit
   VoxelizeOptions absurd = cell_size(1e-9);
