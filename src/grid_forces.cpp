@@ -694,17 +694,19 @@ constexpr int kSplitCalls = 8;
 
 // Records where each pair met (the layers its chunks copy in next); after kSplitCalls calls,
 // moves the one boundary between neighbouring regions whose move by a layer (from the slower to
-// the faster, a layer costing its region's mean) shortens the slower of the two most; none when
+// the faster, a layer costing its region's time over its layers) shortens the slower of the two most; none when
 // no move would (their times differ by less than about a layer's). Each region keeps a layer of
 // points.
 void balance_split(const ChunkResults& results, int chunks, GridSplit& split) {
   std::vector<int>& first = split.first_layers;
   for (int r = 0; 2 * r + 1 < chunks; ++r) first[2 * r + 1] = results.gathered[2 * r + 1].begin;
   const int regions = num_regions(chunks);
+  // a region takes as long as the later of its threads: the two sweep it at once (a thread that
+  // started late and claimed little must not make it look cheap, as their mean would)
   for (int r = 0; r < regions; ++r) {
     double seconds = 0.0;
-    for (int c = 2 * r; c < 2 * r + threads_in_region(r, chunks); ++c) seconds += results.seconds[c];
-    split.seconds[r] += seconds / threads_in_region(r, chunks);
+    for (int c = 2 * r; c < 2 * r + threads_in_region(r, chunks); ++c) seconds = std::max(seconds, results.seconds[c]);
+    split.seconds[r] += seconds;
   }
   if (++split.calls < kSplitCalls) return;
   int best_region = 0, best_step = 0;

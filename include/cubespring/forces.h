@@ -37,7 +37,7 @@ struct GridSplit {
   /// starts its region, the second where the two met on the last call; each thread copies in the
   /// state of its own layers
   std::vector<int> first_layers;
-  std::vector<double> seconds;  ///< each region's time per thread [s], summed over `calls` calls
+  std::vector<double> seconds;  ///< each region's time (its later thread's) [s], summed over `calls` calls
   int calls = 0;                ///< calls timed since a region's boundary last moved
   /// each pair meets where first_layers says and nothing moves (tests; a split that does not
   /// fit the grid is still made even)

@@ -483,6 +483,20 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   }
 }
 
+// Whether the OpenMP runtime gives a region the `threads` it asks for (not with OMP_DYNAMIC or a
+// lower OMP_THREAD_LIMIT): given fewer, the grid passes fall back to an even split for the
+// threads they get, and the tests of the planned splits would pass without running them.
+bool runtime_gives(int threads) {
+  int given = 1;
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads)
+  {
+    if (omp_get_thread_num() == 0) given = omp_get_num_threads();
+  }
+#endif
+  return given == threads;
+}
+
 // The body of the tests of the grid's threads: a box swept by 25 z-layers of points, disturbed
 // (with a crushed cell) and under gravity, and its forces on one thread.
 struct LayeredBody {
@@ -516,6 +530,7 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
   ASSERT_TRUE(exact_model.ok()) << exact_model.message();
   const std::vector<std::pair<const char*, Model>> bodies{{"paper", test::box_model({14, 24, 24}, damped)},
                                                           {"exact-bending", exact_model.value()}};
+  ASSERT_TRUE(runtime_gives(2) && runtime_gives(3) && runtime_gives(4)) << "the splits would go untested";
   for (const auto& [name, model] : bodies) {
     const auto [state, loads, one] = layered_body(model);
     ForceWorkspace ws;
@@ -557,6 +572,7 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
 // 1 layer against 24 (and 24 against the top layer of points) by 2 layers at least in 6 rounds of
 // timed calls. Given one thread of the two planned (in a nested region), it does every layer.
 TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
+  ASSERT_TRUE(runtime_gives(2) && runtime_gives(4)) << "the splits would go untested";
   const Model model = test::box_model({14, 24, 24}, notes_material(0.3));
   const auto [state, loads, one] = layered_body(model);
   ForceWorkspace ws;
