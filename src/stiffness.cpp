@@ -107,7 +107,11 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
     cell_span_ = std::max(cell_span_, *highest - *lowest);
   }
   positive_correction_.resize(model.num_cells());
-  for (int c = 0; c < model.num_cells(); ++c) positive_correction_[c] = positive_part(model.cell_correction[c]);
+  positive_of_.resize(model.num_cells());
+  for (int c = 0; c < model.num_cells(); ++c) {
+    positive_correction_[c] = positive_part(model.cell_correction[c]);
+    positive_of_[c] = model.cell_correction[c];
+  }
   cell_position_.resize(model.num_cells());
   for (int c = 0; c < model.num_cells(); ++c) {
     for (int p = 0; p < kCornersPerCell; ++p) {
@@ -220,6 +224,15 @@ void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
 void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                     double stiffness_scale, double damping_scale, SparseMatrix& matrix,
                                     int threads) {
+  // the model's springs are read at every call; the cells' PSD parts are kept, so a correction
+  // changed since (a stiffer region, say) gets its own again: a compare per cell
+  if (kind == StiffnessKind::kPositiveSemiDefinite) {
+    for (int c = 0; c < model.num_cells(); ++c) {
+      if (model.cell_correction[c] == positive_of_[c]) continue;
+      positive_correction_[c] = positive_part(model.cell_correction[c]);
+      positive_of_[c] = model.cell_correction[c];
+    }
+  }
   measure_tensions(model, x, tensions_);
   const int num_nodes = model.num_nodes();
   // each thread the rows of a range of nodes, from the springs and cells that reach them taken

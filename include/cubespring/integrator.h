@@ -59,8 +59,9 @@ struct StepReport {
 /// Advances a body's state by one time step. Keeps the scratch arrays of its integrator between
 /// steps, so an explicit step allocates nothing after the first one (an implicit step assembles
 /// into a kept sparsity pattern but allocates its CG vectors). One stepper per body: a body of
-/// other counts is refused (invalid-input); after changing a body's stiffnesses or corrections,
-/// make a new one (the implicit step keeps what it assembled from them).
+/// other counts is refused (invalid-input). A body's spring stiffnesses and cell corrections
+/// may change between steps: each step reads them (after a change, update_grid_layout(), as
+/// model.h says).
 class Stepper {
  public:
   explicit Stepper(const Model& model);

@@ -75,6 +75,7 @@ class StiffnessAssembler {
   std::vector<std::array<int, 2>> spring_position_;      // per spring: j in row i, i in row j
   std::vector<std::array<int, 64>> cell_position_;       // per cell: corner q in row of corner p
   std::vector<Eigen::Matrix3d> positive_correction_;      // per cell: PSD part of D
+  std::vector<Eigen::Matrix3d> positive_of_;              // per cell: the D it is the part of
   int spring_span_ = 0;  // the most nodes between a spring's two ends
   int cell_span_ = 0;    // the most nodes between a cell's lowest and highest corner
   ForceWorkspace tensions_;  // the springs' and cells' tensions at the positions, kept: an implicit
