@@ -106,12 +106,9 @@ StiffnessAssembler::StiffnessAssembler(const Model& model) {
     const auto [lowest, highest] = std::minmax_element(corners.begin(), corners.end());
     cell_span_ = std::max(cell_span_, *highest - *lowest);
   }
+  // the PSD parts of the corrections are made when first assembled (add_values): NaN equals no D
   positive_correction_.resize(model.num_cells());
-  positive_of_.resize(model.num_cells());
-  for (int c = 0; c < model.num_cells(); ++c) {
-    positive_correction_[c] = positive_part(model.cell_correction[c]);
-    positive_of_[c] = model.cell_correction[c];
-  }
+  positive_of_.assign(model.num_cells(), Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   cell_position_.resize(model.num_cells());
   for (int c = 0; c < model.num_cells(); ++c) {
     for (int p = 0; p < kCornersPerCell; ++p) {
@@ -224,8 +221,9 @@ void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
 void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                     double stiffness_scale, double damping_scale, SparseMatrix& matrix,
                                     int threads) {
-  // the model's springs are read at every call; the cells' PSD parts are kept, so a correction
-  // changed since (a stiffer region, say) gets its own again: a compare per cell
+  // the model's springs are read at every call; the cells' PSD parts are kept, made for each
+  // correction the first time it is seen (a changed one, a stiffer region say, too): a compare
+  // per cell
   if (kind == StiffnessKind::kPositiveSemiDefinite) {
     for (int c = 0; c < model.num_cells(); ++c) {
       if (model.cell_correction[c] == positive_of_[c]) continue;
