@@ -568,11 +568,12 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
 
 // Without a fixed split, each pair's threads claim layers as they go and the split records where
 // they met (the layers each copies in next); a split that does not fit the grid is made even. The
-// boundary between two pairs' regions moves towards the pair that took more time per thread: from
-// 1 layer against 24 (and 24 against the top layer of points) by 2 layers at least in 6 rounds of
-// timed calls. Given one thread of the two planned (in a nested region), it does every layer.
+// boundary between two pairs' regions moves away from the slower region (its later thread's
+// time): from 1 layer against 24 (and 24 against the top layer of points) by 2 layers at least in
+// 6 rounds of timed calls, and so does that of a pair beside a thread alone (3 threads). Given one
+// thread of the two planned (in a nested region), it does every layer.
 TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
-  ASSERT_TRUE(runtime_gives(2) && runtime_gives(4)) << "the splits would go untested";
+  ASSERT_TRUE(runtime_gives(2) && runtime_gives(3) && runtime_gives(4)) << "the splits would go untested";
   const Model model = test::box_model({14, 24, 24}, notes_material(0.3));
   const auto [state, loads, one] = layered_body(model);
   ForceWorkspace ws;
@@ -619,6 +620,16 @@ TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
     EXPECT_TRUE(first[0] <= first[1] && first[1] <= first[2] && first[2] <= first[3] && first[3] <= first[4])
         << ::testing::PrintToString(first);
     EXPECT_EQ(std::memcmp(one.data(), four.data(), sizeof(double) * one.size()), 0);
+  }
+  // 3 threads: a pair's region below a thread alone, its boundary moving the same way
+  Eigen::Matrix3Xd three;
+  for (const int boundary : {1, 24}) {  // the thread alone, then the pair, far the slower
+    ws.grid_split = GridSplit{{0, 0, boundary, 25}, {}, 0};
+    for (int call = 0; call < 6 * 8; ++call) compute_forces(model, state, loads, ForceOptions{true, 3}, ws, three);
+    const std::vector<int>& first = ws.grid_split.first_layers;
+    EXPECT_GE(std::abs(first[2] - boundary), 2) << boundary;
+    EXPECT_TRUE(first[0] <= first[1] && first[1] <= first[2] && first[2] <= first[3]) << ::testing::PrintToString(first);
+    EXPECT_EQ(std::memcmp(one.data(), three.data(), sizeof(double) * one.size()), 0);
   }
 }
 
