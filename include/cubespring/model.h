@@ -31,6 +31,9 @@ struct Model {
   CellModel cell_model = CellModel::kBaudet2007;
   Eigen::Vector3d cell_size{0, 0, 0};  ///< (hx, hy, hz) [m]
   Eigen::Vector3d origin{0, 0, 0};     ///< [m]
+  /// The materials the arrays below were made from: read-only after build_model() (the masses,
+  /// the springs' stiffness and damping and the corrections do not follow a change; to change a
+  /// material, build the model again).
   std::vector<Material> materials;
 
   /// Nodes (and cells) are numbered in the order of their grid index along major_axis, slowest,
