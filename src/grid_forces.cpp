@@ -3,10 +3,11 @@
 // Four passes over the grid's points, each a loop over whole z-layers of contiguous points that
 // the compiler vectorises (compiled with -fopenmp-simd, -fno-math-errno and
 // -fno-trapping-math, src/CMakeLists.txt):
-//   1. springs, family by family: length, length rate, own tension; the diagonals (no
-//      correction) their force at once, the edges their unit vector;
-//   2. cells: mean edge strains -> correction tension per axis (docs/model-baudet2007.md
-//      section 3); signed volume of the mean edge vectors -> crushed cells (section 5);
+//   1. springs: length, length rate, own tension; the edges family by family, keeping their unit
+//      vector; the 4 diagonals (no correction) at once, their force, and from them the signed
+//      volume of the cell's mean edge vectors -> crushed cells (docs/model-baudet2007.md
+//      section 5);
+//   2. cells: mean edge strains -> correction tension per axis (section 3);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
 //   the exact-bending twist, by faces (below), when the body has it: its cells' coefficients in
 //      pass 2 (from the corner positions the crushed test reads), each face's difference of
@@ -47,12 +48,12 @@ inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
 constexpr int kZEdges = 2;  // the family of the z-edges (grid_layout.h)
 using Clock = std::chrono::steady_clock;
 
-// Pass 1 for family f on one z-layer; kKeepVector: an edge family keeps its vectors (twist);
-// kUniform: a family whose springs have a cell's share of stiffness and damping times their
+// Pass 1 for edge family f on one z-layer: its unit vectors (scaled to forces in pass 3), lengths,
+// rates and own tensions; kKeepVector: it keeps its vectors too (twist); kUniform: a family whose springs have a cell's share of stiffness and damping times their
 // number of cells (SpringFamily::uniform; the same bits), counted from the cells' occupancy,
 // which the cell pass streams anyway: a stream of per-point values spared, two with damping.
-template <bool kWithRate, bool kDiagonal, bool kKeepVector, bool kUniform = false>
-CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
+template <bool kWithRate, bool kKeepVector, bool kUniform>
+CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   const int count = layer_points(grid, family.rows);
   const double* __restrict x = a.in(kPosition, slab);
@@ -64,15 +65,14 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
   double* __restrict fx = a.out(kFamilyForce + 3 * f, slab);
   double* __restrict fy = a.out(kFamilyForce + 3 * f + 1, slab);
   double* __restrict fz = a.out(kFamilyForce + 3 * f + 2, slab);
-  // edges keep their length, rate and own tension for the cells
-  const int e = kDiagonal ? 0 : f;
-  double* __restrict length_out = a.out(kEdgeLength + e, slab);
-  double* __restrict rate_out = a.out(kEdgeRate + e, slab);
-  double* __restrict own_out = a.out(kEdgeOwnTension + e, slab);
-  double* __restrict vector_x = a.out(kEdgeVector + 3 * e, slab);
-  double* __restrict vector_y = a.out(kEdgeVector + 3 * e + 1, slab);
-  double* __restrict vector_z = a.out(kEdgeVector + 3 * e + 2, slab);
-  const double* __restrict stiffness = from_layer(family.stiffness, grid, slab);
+  // the cells read the lengths and rates, pass 3 the own tensions
+  double* __restrict length_out = a.out(kEdgeLength + f, slab);
+  double* __restrict rate_out = a.out(kEdgeRate + f, slab);
+  double* __restrict own_out = a.out(kEdgeOwnTension + f, slab);
+  double* __restrict vector_x = a.out(kEdgeVector + 3 * f, slab);
+  double* __restrict vector_y = a.out(kEdgeVector + 3 * f + 1, slab);
+  double* __restrict vector_z = a.out(kEdgeVector + 3 * f + 2, slab);
+  const double* __restrict stiffness = kUniform ? nullptr : from_layer(family.stiffness, grid, slab);
   const double* __restrict damping = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;
   // an edge's cells: the one at its first point and those a step back along b, c and both
   const double* __restrict occupied = grid.occupied_from_layer(slab);
@@ -91,47 +91,114 @@ CUBESPRING_VECTOR_CLONES void measure_family(const GridLayout& grid, int f, int 
     const double ez = z[g + to] - z[g + from];
     const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
     const double inverse = length > degenerate ? 1.0 / length : 0.0;
-    const double cells = kDiagonal ? occupied[g] : (occupied[g] + occupied_b[g]) + (occupied_c[g] + occupied_bc[g]);
+    const double cells = (occupied[g] + occupied_b[g]) + (occupied_c[g] + occupied_bc[g]);
     double own = (kUniform ? cells * cell_stiffness : stiffness[g]) * (length - rest);
     if constexpr (kWithRate) {
       const double rate = ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey +
                            (vz[g + to] - vz[g + from]) * ez) * inverse;
       own += (kUniform ? cells * cell_damping : damping[g]) * rate;
-      if constexpr (!kDiagonal) rate_out[g] = rate;
+      rate_out[g] = rate;
     }
-    if constexpr (kDiagonal) {
-      const double q = own * inverse;
-      fx[g] = q * ex;
-      fy[g] = q * ey;
-      fz[g] = q * ez;
-    } else {
-      fx[g] = ex * inverse;
-      fy[g] = ey * inverse;
-      fz[g] = ez * inverse;
-      length_out[g] = length;
-      own_out[g] = own;
-      if constexpr (kKeepVector) {
-        vector_x[g] = ex;
-        vector_y[g] = ey;
-        vector_z[g] = ez;
-      }
+    fx[g] = ex * inverse;
+    fy[g] = ey * inverse;
+    fz[g] = ez * inverse;
+    length_out[g] = length;
+    own_out[g] = own;
+    if constexpr (kKeepVector) {
+      vector_x[g] = ex;
+      vector_y[g] = ey;
+      vector_z[g] = ez;
     }
   }
 }
 
+// Pass 1 for the 4 diagonal families on one z-layer at once (no correction: their forces at
+// once), and the cells' crushed test from the same diagonals: the signed
+// volume of the mean edge vectors, which the diagonals give (as forces.cpp's cell pass finds
+// them: sum_k s_a(k) x_k = sum over diagonals k -> 7 - k of s_a(7 - k) (x_{7-k} - x_k)), read
+// from the registers the springs were measured in rather than from 8 corners again. Returns
+// the layer's crushed cells.
+template <bool kWithRate, bool kUniform>
+CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab, const LayerArrays& a) {
+  constexpr int d0 = kEdgeFamilies;  // diagonal k is family d0 + k, from corner k to corner 7 - k
+  const int count = layer_points(grid, grid.cell_rows);
+  const double* __restrict x = a.in(kPosition, slab);
+  const double* __restrict y = a.in(kPosition + 1, slab);
+  const double* __restrict z = a.in(kPosition + 2, slab);
+  const double* __restrict vx = a.in(kVelocity, slab);
+  const double* __restrict vy = a.in(kVelocity + 1, slab);
+  const double* __restrict vz = a.in(kVelocity + 2, slab);
+  const double* __restrict occupied = grid.occupied_from_layer(slab);
+  double* out[4][3];
+  const double* stiffness[4];
+  const double* damping[4];
+  double cell_stiffness[4], cell_damping[4], rest[4], degenerate[4];
+  int from[4], to[4];
+  for (int k = 0; k < 4; ++k) {
+    const SpringFamily& family = grid.families[d0 + k];
+    assert(family.rows == grid.cell_rows && family.slabs == grid.cell_slabs);
+    for (int c = 0; c < 3; ++c) out[k][c] = a.out(kFamilyForce + 3 * (d0 + k) + c, slab);
+    stiffness[k] = kUniform ? nullptr : from_layer(family.stiffness, grid, slab);
+    damping[k] = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;
+    cell_stiffness[k] = family.cell_stiffness;
+    cell_damping[k] = family.cell_damping;
+    rest[k] = family.rest_length;
+    degenerate[k] = kDegenerateLengthFraction * family.rest_length;
+    from[k] = family.from;
+    to[k] = family.to;
+  }
+  const double crushed_volume_64 = 64.0 * kCrushedVolumeFraction * grid.cell_size.prod();
+  int crushed = 0;
+#pragma omp simd reduction(+ : crushed)
+  for (int g = 0; g < count; ++g) {
+    double d[4][3];  // diagonal k's vector, corner 7 - k minus corner k
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      const double ex = x[g + to[k]] - x[g + from[k]];
+      const double ey = y[g + to[k]] - y[g + from[k]];
+      const double ez = z[g + to[k]] - z[g + from[k]];
+      d[k][0] = ex;
+      d[k][1] = ey;
+      d[k][2] = ez;
+      const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
+      const double inverse = length > degenerate[k] ? 1.0 / length : 0.0;
+      double own = (kUniform ? occupied[g] * cell_stiffness[k] : stiffness[k][g]) * (length - rest[k]);
+      if constexpr (kWithRate) {
+        const double rate = ((vx[g + to[k]] - vx[g + from[k]]) * ex + (vy[g + to[k]] - vy[g + from[k]]) * ey +
+                             (vz[g + to[k]] - vz[g + from[k]]) * ez) * inverse;
+        own += (kUniform ? occupied[g] * cell_damping[k] : damping[k][g]) * rate;
+      }
+      const double q = own * inverse;
+      out[k][0][g] = q * ex;
+      out[k][1][g] = q * ey;
+      out[k][2][g] = q * ez;
+    }
+    double mean[3][3];  // 4 x the mean edge vector along each axis: s_a(7 - k) is, for k = 0..3,
+                        // x: + - + -, y: + + - -, z: + + + +
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      mean[0][c] = (d[0][c] - d[1][c]) + (d[2][c] - d[3][c]);
+      mean[1][c] = (d[0][c] + d[1][c]) - (d[2][c] + d[3][c]);
+      mean[2][c] = (d[0][c] + d[1][c]) + (d[2][c] + d[3][c]);
+    }
+    const double mxx = mean[0][0], mxy = mean[0][1], mxz = mean[0][2];
+    const double myx = mean[1][0], myy = mean[1][1], myz = mean[1][2];
+    const double mzx = mean[2][0], mzy = mean[2][1], mzz = mean[2][2];
+    const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
+    crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
+  }
+  return crushed;
+}
+
 template <bool kWithRate>
-void measure_springs(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
-  if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges or cells: its zeros stay
+void measure_edge_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
+  if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges: their zeros stay
   const bool uniform = grid.families[f].uniform;
-  if (f >= kEdgeFamilies) {
-    uniform ? measure_family<kWithRate, true, false, true>(grid, f, slab, a)
-            : measure_family<kWithRate, true, false, false>(grid, f, slab, a);
-  } else if (grid.has_twist) {
-    uniform ? measure_family<kWithRate, false, true, true>(grid, f, slab, a)
-            : measure_family<kWithRate, false, true, false>(grid, f, slab, a);
+  if (grid.has_twist) {
+    uniform ? measure_edges<kWithRate, true, true>(grid, f, slab, a) : measure_edges<kWithRate, true, false>(grid, f, slab, a);
   } else {
-    uniform ? measure_family<kWithRate, false, false, true>(grid, f, slab, a)
-            : measure_family<kWithRate, false, false, false>(grid, f, slab, a);
+    uniform ? measure_edges<kWithRate, false, true>(grid, f, slab, a)
+            : measure_edges<kWithRate, false, false>(grid, f, slab, a);
   }
 }
 
@@ -165,19 +232,17 @@ inline double twist_coefficient(double lower_4, double upper_4, double stiffness
   return 0.5 * stiffness * h * ((upper - lower) / (h * h));
 }
 
-// Pass 2 on one z-layer of cells; returns its crushed cells (0 unless count_crushed). With
-// kTwist, also the cells' twist coefficients (above), from the corner positions the crushed
-// test reads anyway. kUniform: every cell has the grid's uniform coefficients (times its
+// Pass 2 on one z-layer of cells (their crushed test is measure_diagonals'). With kTwist, also
+// the cells' twist coefficients (above), from their corner positions. kUniform: every cell has the grid's uniform coefficients (times its
 // occupancy: 1 or 0, the same bits), which spares the loop 6-8 streams of per-cell values (its
 // loads from memory were most of its time).
 template <bool kWithRate, bool kTwist, bool kUniform>
-CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const LayerArrays& a, bool count_crushed) {
+CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
   const Eigen::Array3d tension_per_stress = grid.cell_size.prod() * inverse_edge_sum;
   const double ix = inverse_edge_sum.x(), iy = inverse_edge_sum.y(), iz = inverse_edge_sum.z();
   const double tx = tension_per_stress.x(), ty = tension_per_stress.y(), tz = tension_per_stress.z();
-  const double crushed_volume_64 = 64.0 * kCrushedVolumeFraction * grid.cell_size.prod();
   const int sy = grid.stride_y, sz = grid.stride_z;
   const CellEdges lx(a, kEdgeLength, slab, 0), ly(a, kEdgeLength + 1, slab, 1), lz(a, kEdgeLength + 2, slab, 2);
   const CellEdges rx(a, kEdgeRate, slab, 0), ry(a, kEdgeRate + 1, slab, 1), rz(a, kEdgeRate + 2, slab, 2);
@@ -198,7 +263,6 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
   // the corners' positions, corner c at g + step(c) (model.h)
   const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
   const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};
-  int crushed = 0;
 #pragma omp simd
   for (int g = 0; g < count; ++g) {
     double ex = edge_sum(lx, g) * ix - 1.0;
@@ -221,7 +285,7 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
       tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
     }
   }
-  if (!kTwist && !count_crushed) return 0;
+  if constexpr (!kTwist) return;
   // a loop of its own: together, the two need more vector registers than there are
   const double* __restrict twist_stiffness = kTwist && !kUniform ? from_layer(grid.cell_twist, grid, slab) : nullptr;
   const double uniform_twist = grid.uniform_twist;
@@ -229,10 +293,8 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
   double* __restrict qy = a.out(kCellTwist + 1, slab);
   double* __restrict qz = a.out(kCellTwist + 2, slab);
   const double h = grid.cell_size.x();
-#pragma omp simd reduction(+ : crushed)
+#pragma omp simd
   for (int g = 0; g < count; ++g) {
-    // 4 x each mean edge vector: the sum of the cell's 4 edges along that axis
-    double mean[3][3];  // [edge axis][component]
     // 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y, z,
     // lower and upper (twist_coefficient)
     double x_lower = 0.0, x_upper = 0.0, y_lower = 0.0, y_upper = 0.0, z_lower = 0.0, z_upper = 0.0;
@@ -241,31 +303,19 @@ CUBESPRING_VECTOR_CLONES int cell_pass(const GridLayout& grid, int slab, const L
       const double* p = position[c];
       const double p0 = p[g + step[0]], p1 = p[g + step[1]], p2 = p[g + step[2]], p3 = p[g + step[3]];
       const double p4 = p[g + step[4]], p5 = p[g + step[5]], p6 = p[g + step[6]], p7 = p[g + step[7]];
-      mean[0][c] = ((p1 - p0) + (p3 - p2)) + ((p5 - p4) + (p7 - p6));
-      mean[1][c] = ((p2 - p0) + (p3 - p1)) + ((p6 - p4) + (p7 - p5));
-      mean[2][c] = ((p4 - p0) + (p5 - p1)) + ((p6 - p2) + (p7 - p3));
-      if constexpr (kTwist) {  // a face's a-edges times its c-edges (a < c its in-plane axes)
-        x_lower += ((p2 - p0) + (p6 - p4)) * ((p4 - p0) + (p6 - p2));
-        x_upper += ((p3 - p1) + (p7 - p5)) * ((p5 - p1) + (p7 - p3));
-        y_lower += ((p1 - p0) + (p5 - p4)) * ((p4 - p0) + (p5 - p1));
-        y_upper += ((p3 - p2) + (p7 - p6)) * ((p6 - p2) + (p7 - p3));
-        z_lower += ((p1 - p0) + (p3 - p2)) * ((p2 - p0) + (p3 - p1));
-        z_upper += ((p5 - p4) + (p7 - p6)) * ((p6 - p4) + (p7 - p5));
-      }
+      // a face's a-edges times its c-edges (a < c its in-plane axes)
+      x_lower += ((p2 - p0) + (p6 - p4)) * ((p4 - p0) + (p6 - p2));
+      x_upper += ((p3 - p1) + (p7 - p5)) * ((p5 - p1) + (p7 - p3));
+      y_lower += ((p1 - p0) + (p5 - p4)) * ((p4 - p0) + (p5 - p1));
+      y_upper += ((p3 - p2) + (p7 - p6)) * ((p6 - p2) + (p7 - p3));
+      z_lower += ((p1 - p0) + (p3 - p2)) * ((p2 - p0) + (p3 - p1));
+      z_upper += ((p5 - p4) + (p7 - p6)) * ((p6 - p4) + (p7 - p5));
     }
-    const double mxx = mean[0][0], mxy = mean[0][1], mxz = mean[0][2];
-    const double myx = mean[1][0], myy = mean[1][1], myz = mean[1][2];
-    const double mzx = mean[2][0], mzy = mean[2][1], mzz = mean[2][2];
-    const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
-    crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
-    if constexpr (kTwist) {
-      const double stiffness = kUniform ? occupied[g] * uniform_twist : twist_stiffness[g];
-      qx[g] = twist_coefficient(x_lower, x_upper, stiffness, h);
-      qy[g] = twist_coefficient(y_lower, y_upper, stiffness, h);
-      qz[g] = twist_coefficient(z_lower, z_upper, stiffness, h);
-    }
+    const double stiffness = kUniform ? occupied[g] * uniform_twist : twist_stiffness[g];
+    qx[g] = twist_coefficient(x_lower, x_upper, stiffness, h);
+    qy[g] = twist_coefficient(y_lower, y_upper, stiffness, h);
+    qz[g] = twist_coefficient(z_lower, z_upper, stiffness, h);
   }
-  return count_crushed ? crushed : 0;
 }
 
 // Pass 3 for edge family f on one z-layer: the edge at g belongs to the cells at g, g - b, g - c,
@@ -385,32 +435,34 @@ struct LayerPasses {
   bool with_rate;
 
   // the first `families` families (the x- and y-edges, or all); needs the positions of slab and
-  // slab + 1
-  void measure(int slab, int families = kSpringFamilies) const {
-    if (slab < 0 || slab >= grid.points.z()) return;
-    for (int f = 0; f < families; ++f) {
+  // slab + 1. Returns the layer's crushed cells when it measures the diagonals, else 0.
+  int measure(int slab, int families = kSpringFamilies) const {
+    if (slab < 0 || slab >= grid.points.z()) return 0;
+    for (int f = 0; f < std::min(families, kEdgeFamilies); ++f) {
       if (with_rate) {
-        measure_springs<true>(grid, f, slab, a);
+        measure_edge_family<true>(grid, f, slab, a);
       } else {
-        measure_springs<false>(grid, f, slab, a);
+        measure_edge_family<false>(grid, f, slab, a);
       }
     }
+    if (families <= kEdgeFamilies || slab >= grid.cell_slabs) return 0;  // the top layer: no diagonals
+    bool uniform = true;
+    for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
+    if (with_rate) return uniform ? measure_diagonals<true, true>(grid, slab, a) : measure_diagonals<true, false>(grid, slab, a);
+    return uniform ? measure_diagonals<false, true>(grid, slab, a) : measure_diagonals<false, false>(grid, slab, a);
   }
-  // the crushed cells if count_crushed, else 0; needs measure(slab) and measure(slab + 1)
-  int cells(int slab, bool count_crushed = true) const {
-    if (slab < 0) return 0;
-    if (slab >= grid.cell_slabs) return 0;  // the top layer of points: its zeros stay
-    if (grid.uniform_cells) return cell_pass_of_kind<true>(slab, count_crushed);
-    return cell_pass_of_kind<false>(slab, count_crushed);
+  // needs measure(slab) and measure(slab + 1)
+  void cells(int slab) const {
+    if (slab < 0 || slab >= grid.cell_slabs) return;  // the top layer of points: its zeros stay
+    grid.uniform_cells ? cell_pass_of_kind<true>(slab) : cell_pass_of_kind<false>(slab);
   }
   template <bool kUniform>
-  int cell_pass_of_kind(int slab, bool count_crushed) const {
+  void cell_pass_of_kind(int slab) const {
     if (grid.has_twist) {
-      return with_rate ? cell_pass<true, true, kUniform>(grid, slab, a, count_crushed)
-                       : cell_pass<false, true, kUniform>(grid, slab, a, count_crushed);
+      with_rate ? cell_pass<true, true, kUniform>(grid, slab, a) : cell_pass<false, true, kUniform>(grid, slab, a);
+    } else {
+      with_rate ? cell_pass<true, false, kUniform>(grid, slab, a) : cell_pass<false, false, kUniform>(grid, slab, a);
     }
-    return with_rate ? cell_pass<true, false, kUniform>(grid, slab, a, count_crushed)
-                     : cell_pass<false, false, kUniform>(grid, slab, a, count_crushed);
   }
   // edge families [first_family, end_family), each once a layer (the pass scales the unit
   // vector); needs cells(slab) and cells(slab - 1) (the z-edges cells(slab) only); the twist also
@@ -572,21 +624,23 @@ Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& wait
   // z-edges and diagonals. The z-edges' tensions need the cells of that layer only (not their
   // crushed counts: those are the chunk below's); its x- and y-edges, which would need the layer
   // below it, stay as they are: no gather here reads them.
-  passes.measure(first - 1);
-  passes.measure(first);
-  passes.cells(first - 1, false);
+  (void)passes.measure(first - 1);
+  crushed += passes.measure(first);
+  passes.cells(first - 1);
   passes.edge_tensions(first - 1, kZEdges);
   int slab = first;
-  do {
+  for (;;) {
     waits.need(slab + 1, slab + 4);
     // of the region's next layer, only the x- and y-edges, whose lengths the cells of this
     // layer read: its z-edges and diagonals end in no point of this region
-    passes.measure(slab + 1, slab + 1 == plan.region.end ? kZEdges : kSpringFamilies);
-    crushed += passes.cells(slab);
+    const int crushed_above = passes.measure(slab + 1, slab + 1 == plan.region.end ? kZEdges : kSpringFamilies);
+    passes.cells(slab);
     passes.edge_tensions(slab);
     passes.gather(slab);
     ++slab;
-  } while (slab < plan.region.end && plan.claim(slab));
+    if (slab == plan.region.end || !plan.claim(slab)) break;
+    crushed += crushed_above;  // the claimer of slab + 1 counts them
+  }
   return {first, slab};
 }
 
@@ -599,14 +653,14 @@ Range sweep_down(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& wa
   int slab = plan.region.end - 1;
   if (slab < plan.region.begin || !plan.claim(slab)) return {slab + 1, slab + 1};
   waits.need(slab, slab + 3);
-  passes.measure(slab + 1, kZEdges);  // the x- and y-edges above, which the cells read
-  passes.measure(slab);
-  crushed += passes.cells(slab);
+  (void)passes.measure(slab + 1, kZEdges);  // the x- and y-edges above, which the cells read
+  crushed += passes.measure(slab);
+  passes.cells(slab);
   passes.edge_tensions(slab, kZEdges);
   for (;;) {
     waits.need(slab - 1, slab + 2);
-    passes.measure(slab - 1);
-    const int crushed_below = passes.cells(slab - 1);  // the claimer of slab - 1 counts them
+    const int crushed_below = passes.measure(slab - 1);  // the claimer of slab - 1 counts them
+    passes.cells(slab - 1);
     passes.edge_tensions(slab - 1, kZEdges);
     passes.edge_tensions(slab, 0, kZEdges);
     passes.gather(slab);
