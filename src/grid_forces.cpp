@@ -4,14 +4,14 @@
 // the compiler vectorises (compiled with -fopenmp-simd, -fno-math-errno and
 // -fno-trapping-math, src/CMakeLists.txt):
 //   1. springs: length, length rate, own tension; the edges family by family, keeping their unit
-//      vector; the 4 diagonals (no correction) at once, their force, and from them the signed
-//      volume of the cell's mean edge vectors -> crushed cells (docs/model-baudet2007.md
-//      section 5);
+//      vector; the 4 diagonals of a cell at once (no correction: their force), from its 8
+//      corners, which also give the signed volume of its mean edge vectors -> crushed cells
+//      (docs/model-baudet2007.md section 5);
 //   2. cells: mean edge strains -> correction tension per axis (section 3);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
 //   the exact-bending twist, by faces (below), when the body has it: its cells' coefficients in
-//      pass 2 (from the corner positions the crushed test reads), each face's difference of
-//      its two cells' coefficients in pass 3a, its edge forces in pass 3b;
+//      pass 1 (from the corners the diagonals read), each face's difference of its two cells'
+//      coefficients in pass 3a, its edge forces in pass 3b;
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads write
 //      nothing another writes, and the sums do not depend on the thread count).
@@ -112,84 +112,6 @@ CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int s
   }
 }
 
-// Pass 1 for the 4 diagonal families on one z-layer at once (no correction: their forces at
-// once), and the cells' crushed test from the same diagonals: the signed
-// volume of the mean edge vectors, which the diagonals give (as forces.cpp's cell pass finds
-// them: sum_k s_a(k) x_k = sum over diagonals k -> 7 - k of s_a(7 - k) (x_{7-k} - x_k)), read
-// from the registers the springs were measured in rather than from 8 corners again. Returns
-// the layer's crushed cells.
-template <bool kWithRate, bool kUniform>
-CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab, const LayerArrays& a) {
-  constexpr int d0 = kEdgeFamilies;  // diagonal k is family d0 + k, from corner k to corner 7 - k
-  const int count = layer_points(grid, grid.cell_rows);
-  const double* __restrict x = a.in(kPosition, slab);
-  const double* __restrict y = a.in(kPosition + 1, slab);
-  const double* __restrict z = a.in(kPosition + 2, slab);
-  const double* __restrict vx = a.in(kVelocity, slab);
-  const double* __restrict vy = a.in(kVelocity + 1, slab);
-  const double* __restrict vz = a.in(kVelocity + 2, slab);
-  const double* __restrict occupied = grid.occupied_from_layer(slab);
-  double* out[4][3];
-  const double* stiffness[4];
-  const double* damping[4];
-  double cell_stiffness[4], cell_damping[4], rest[4], degenerate[4];
-  int from[4], to[4];
-  for (int k = 0; k < 4; ++k) {
-    const SpringFamily& family = grid.families[d0 + k];
-    assert(family.rows == grid.cell_rows && family.slabs == grid.cell_slabs);
-    for (int c = 0; c < 3; ++c) out[k][c] = a.out(kFamilyForce + 3 * (d0 + k) + c, slab);
-    stiffness[k] = kUniform ? nullptr : from_layer(family.stiffness, grid, slab);
-    damping[k] = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;
-    cell_stiffness[k] = family.cell_stiffness;
-    cell_damping[k] = family.cell_damping;
-    rest[k] = family.rest_length;
-    degenerate[k] = kDegenerateLengthFraction * family.rest_length;
-    from[k] = family.from;
-    to[k] = family.to;
-  }
-  const double crushed_volume_64 = 64.0 * kCrushedVolumeFraction * grid.cell_size.prod();
-  int crushed = 0;
-#pragma omp simd reduction(+ : crushed)
-  for (int g = 0; g < count; ++g) {
-    double d[4][3];  // diagonal k's vector, corner 7 - k minus corner k
-#pragma GCC unroll 4
-    for (int k = 0; k < 4; ++k) {
-      const double ex = x[g + to[k]] - x[g + from[k]];
-      const double ey = y[g + to[k]] - y[g + from[k]];
-      const double ez = z[g + to[k]] - z[g + from[k]];
-      d[k][0] = ex;
-      d[k][1] = ey;
-      d[k][2] = ez;
-      const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
-      const double inverse = length > degenerate[k] ? 1.0 / length : 0.0;
-      double own = (kUniform ? occupied[g] * cell_stiffness[k] : stiffness[k][g]) * (length - rest[k]);
-      if constexpr (kWithRate) {
-        const double rate = ((vx[g + to[k]] - vx[g + from[k]]) * ex + (vy[g + to[k]] - vy[g + from[k]]) * ey +
-                             (vz[g + to[k]] - vz[g + from[k]]) * ez) * inverse;
-        own += (kUniform ? occupied[g] * cell_damping[k] : damping[k][g]) * rate;
-      }
-      const double q = own * inverse;
-      out[k][0][g] = q * ex;
-      out[k][1][g] = q * ey;
-      out[k][2][g] = q * ez;
-    }
-    double mean[3][3];  // 4 x the mean edge vector along each axis: s_a(7 - k) is, for k = 0..3,
-                        // x: + - + -, y: + + - -, z: + + + +
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; ++c) {
-      mean[0][c] = (d[0][c] - d[1][c]) + (d[2][c] - d[3][c]);
-      mean[1][c] = (d[0][c] + d[1][c]) - (d[2][c] + d[3][c]);
-      mean[2][c] = (d[0][c] + d[1][c]) + (d[2][c] + d[3][c]);
-    }
-    const double mxx = mean[0][0], mxy = mean[0][1], mxz = mean[0][2];
-    const double myx = mean[1][0], myy = mean[1][1], myz = mean[1][2];
-    const double mzx = mean[2][0], mzy = mean[2][1], mzz = mean[2][2];
-    const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
-    crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
-  }
-  return crushed;
-}
-
 template <bool kWithRate>
 void measure_edge_family(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges: their zeros stay
@@ -232,18 +154,127 @@ inline double twist_coefficient(double lower_4, double upper_4, double stiffness
   return 0.5 * stiffness * h * ((upper - lower) / (h * h));
 }
 
-// Pass 2 on one z-layer of cells (their crushed test is measure_diagonals'). With kTwist, also
-// the cells' twist coefficients (above), from their corner positions. kUniform: every cell has the grid's uniform coefficients (times its
-// occupancy: 1 or 0, the same bits), which spares the loop 6-8 streams of per-cell values (its
-// loads from memory were most of its time).
+// Pass 1 for the 4 diagonal families on one z-layer at once (no correction: their forces at
+// once), from the cell's 8 corners, which give the cells' crushed test too: the signed volume of
+// the mean edge vectors, which the diagonals give (as forces.cpp's cell pass finds them:
+// sum_k s_a(k) x_k = sum over diagonals k -> 7 - k of s_a(7 - k) (x_{7-k} - x_k)); and with
+// kTwist, the cells' twist coefficients (above). Returns the layer's crushed cells. kUniform:
+// the diagonals' stiffness and damping, and the cells' twist, are the grid's constants times
+// the occupancy (SpringFamily::uniform and GridLayout::uniform_cells, the same bits).
 template <bool kWithRate, bool kTwist, bool kUniform>
+CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab, const LayerArrays& a) {
+  constexpr int d0 = kEdgeFamilies;  // diagonal k is family d0 + k, from corner k to corner 7 - k
+  const int count = layer_points(grid, grid.cell_rows);
+  const int sy = grid.stride_y, sz = grid.stride_z;
+  const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};  // corner c at g + step[c]
+  const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
+  const double* velocity[3] = {a.in(kVelocity, slab), a.in(kVelocity + 1, slab), a.in(kVelocity + 2, slab)};
+  const double* __restrict occupied = grid.occupied_from_layer(slab);
+  double* out[4][3];
+  const double* stiffness[4];
+  const double* damping[4];
+  double cell_stiffness[4], cell_damping[4], rest[4], degenerate[4];
+  for (int k = 0; k < 4; ++k) {
+    const SpringFamily& family = grid.families[d0 + k];
+    assert(family.rows == grid.cell_rows && family.slabs == grid.cell_slabs);
+    assert(family.from == step[k] && family.to == step[7 - k]);
+    for (int c = 0; c < 3; ++c) out[k][c] = a.out(kFamilyForce + 3 * (d0 + k) + c, slab);
+    stiffness[k] = kUniform ? nullptr : from_layer(family.stiffness, grid, slab);
+    damping[k] = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;
+    cell_stiffness[k] = family.cell_stiffness;
+    cell_damping[k] = family.cell_damping;
+    rest[k] = family.rest_length;
+    degenerate[k] = kDegenerateLengthFraction * family.rest_length;
+  }
+  const double crushed_volume_64 = 64.0 * kCrushedVolumeFraction * grid.cell_size.prod();
+  const double* __restrict twist_stiffness = kTwist && !kUniform ? from_layer(grid.cell_twist, grid, slab) : nullptr;
+  const double uniform_twist = grid.uniform_twist;
+  double* __restrict qx = a.out(kCellTwist, slab);
+  double* __restrict qy = a.out(kCellTwist + 1, slab);
+  double* __restrict qz = a.out(kCellTwist + 2, slab);
+  const double h = grid.cell_size.x();
+  int crushed = 0;
+#pragma omp simd reduction(+ : crushed)
+  for (int g = 0; g < count; ++g) {
+    double d[4][3];   // diagonal k's vector, corner 7 - k minus corner k
+    double dv[4][3];  // and its velocity difference
+    // twist: 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y,
+    // z, lower and upper (twist_coefficient)
+    double x_lower = 0.0, x_upper = 0.0, y_lower = 0.0, y_upper = 0.0, z_lower = 0.0, z_upper = 0.0;
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      const double* p = position[c];
+      const double p0 = p[g + step[0]], p1 = p[g + step[1]], p2 = p[g + step[2]], p3 = p[g + step[3]];
+      const double p4 = p[g + step[4]], p5 = p[g + step[5]], p6 = p[g + step[6]], p7 = p[g + step[7]];
+      d[0][c] = p7 - p0;
+      d[1][c] = p6 - p1;
+      d[2][c] = p5 - p2;
+      d[3][c] = p4 - p3;
+      if constexpr (kWithRate) {
+        const double* v = velocity[c];
+        dv[0][c] = v[g + step[7]] - v[g + step[0]];
+        dv[1][c] = v[g + step[6]] - v[g + step[1]];
+        dv[2][c] = v[g + step[5]] - v[g + step[2]];
+        dv[3][c] = v[g + step[4]] - v[g + step[3]];
+      }
+      if constexpr (kTwist) {  // a face's a-edges times its c-edges (a < c its in-plane axes)
+        x_lower += ((p2 - p0) + (p6 - p4)) * ((p4 - p0) + (p6 - p2));
+        x_upper += ((p3 - p1) + (p7 - p5)) * ((p5 - p1) + (p7 - p3));
+        y_lower += ((p1 - p0) + (p5 - p4)) * ((p4 - p0) + (p5 - p1));
+        y_upper += ((p3 - p2) + (p7 - p6)) * ((p6 - p2) + (p7 - p3));
+        z_lower += ((p1 - p0) + (p3 - p2)) * ((p2 - p0) + (p3 - p1));
+        z_upper += ((p5 - p4) + (p7 - p6)) * ((p6 - p4) + (p7 - p5));
+      }
+    }
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      const double ex = d[k][0], ey = d[k][1], ez = d[k][2];
+      const double length = std::sqrt(ex * ex + ey * ey + ez * ez);
+      const double inverse = length > degenerate[k] ? 1.0 / length : 0.0;
+      double own = (kUniform ? occupied[g] * cell_stiffness[k] : stiffness[k][g]) * (length - rest[k]);
+      if constexpr (kWithRate) {
+        const double rate = (dv[k][0] * ex + dv[k][1] * ey + dv[k][2] * ez) * inverse;
+        own += (kUniform ? occupied[g] * cell_damping[k] : damping[k][g]) * rate;
+      }
+      const double q = own * inverse;
+      out[k][0][g] = q * ex;
+      out[k][1][g] = q * ey;
+      out[k][2][g] = q * ez;
+    }
+    double mean[3][3];  // 4 x the mean edge vector along each axis: s_a(7 - k) is, for k = 0..3,
+                        // x: + - + -, y: + + - -, z: + + + +
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) {
+      mean[0][c] = (d[0][c] - d[1][c]) + (d[2][c] - d[3][c]);
+      mean[1][c] = (d[0][c] + d[1][c]) - (d[2][c] + d[3][c]);
+      mean[2][c] = (d[0][c] + d[1][c]) + (d[2][c] + d[3][c]);
+    }
+    const double mxx = mean[0][0], mxy = mean[0][1], mxz = mean[0][2];
+    const double myx = mean[1][0], myy = mean[1][1], myz = mean[1][2];
+    const double mzx = mean[2][0], mzy = mean[2][1], mzz = mean[2][2];
+    const double volume = mxx * (myy * mzz - myz * mzy) + mxy * (myz * mzx - myx * mzz) + mxz * (myx * mzy - myy * mzx);
+    crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
+    if constexpr (kTwist) {
+      const double twist = kUniform ? occupied[g] * uniform_twist : twist_stiffness[g];
+      qx[g] = twist_coefficient(x_lower, x_upper, twist, h);
+      qy[g] = twist_coefficient(y_lower, y_upper, twist, h);
+      qz[g] = twist_coefficient(z_lower, z_upper, twist, h);
+    }
+  }
+  return crushed;
+}
+
+// Pass 2 on one z-layer of cells: their correction tensions (their crushed test and twist
+// coefficients are measure_diagonals'). kUniform: every cell has the grid's uniform coefficients
+// (times its occupancy: 1 or 0, the same bits), which spares the loop 6-8 streams of per-cell
+// values (its loads from memory were most of its time).
+template <bool kWithRate, bool kUniform>
 CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
   const Eigen::Array3d tension_per_stress = grid.cell_size.prod() * inverse_edge_sum;
   const double ix = inverse_edge_sum.x(), iy = inverse_edge_sum.y(), iz = inverse_edge_sum.z();
   const double tx = tension_per_stress.x(), ty = tension_per_stress.y(), tz = tension_per_stress.z();
-  const int sy = grid.stride_y, sz = grid.stride_z;
   const CellEdges lx(a, kEdgeLength, slab, 0), ly(a, kEdgeLength + 1, slab, 1), lz(a, kEdgeLength + 2, slab, 2);
   const CellEdges rx(a, kEdgeRate, slab, 0), ry(a, kEdgeRate + 1, slab, 1), rz(a, kEdgeRate + 2, slab, 2);
   const double* __restrict dxx = from_layer(grid.correction[0], grid, slab);
@@ -260,9 +291,6 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
   double* __restrict tension_x = a.out(kCellTension, slab);
   double* __restrict tension_y = a.out(kCellTension + 1, slab);
   double* __restrict tension_z = a.out(kCellTension + 2, slab);
-  // the corners' positions, corner c at g + step(c) (model.h)
-  const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
-  const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};
 #pragma omp simd
   for (int g = 0; g < count; ++g) {
     double ex = edge_sum(lx, g) * ix - 1.0;
@@ -284,37 +312,6 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
       tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
       tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
     }
-  }
-  if constexpr (!kTwist) return;
-  // a loop of its own: together, the two need more vector registers than there are
-  const double* __restrict twist_stiffness = kTwist && !kUniform ? from_layer(grid.cell_twist, grid, slab) : nullptr;
-  const double uniform_twist = grid.uniform_twist;
-  double* __restrict qx = a.out(kCellTwist, slab);
-  double* __restrict qy = a.out(kCellTwist + 1, slab);
-  double* __restrict qz = a.out(kCellTwist + 2, slab);
-  const double h = grid.cell_size.x();
-#pragma omp simd
-  for (int g = 0; g < count; ++g) {
-    // 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y, z,
-    // lower and upper (twist_coefficient)
-    double x_lower = 0.0, x_upper = 0.0, y_lower = 0.0, y_upper = 0.0, z_lower = 0.0, z_upper = 0.0;
-#pragma GCC unroll 3
-    for (int c = 0; c < 3; ++c) {
-      const double* p = position[c];
-      const double p0 = p[g + step[0]], p1 = p[g + step[1]], p2 = p[g + step[2]], p3 = p[g + step[3]];
-      const double p4 = p[g + step[4]], p5 = p[g + step[5]], p6 = p[g + step[6]], p7 = p[g + step[7]];
-      // a face's a-edges times its c-edges (a < c its in-plane axes)
-      x_lower += ((p2 - p0) + (p6 - p4)) * ((p4 - p0) + (p6 - p2));
-      x_upper += ((p3 - p1) + (p7 - p5)) * ((p5 - p1) + (p7 - p3));
-      y_lower += ((p1 - p0) + (p5 - p4)) * ((p4 - p0) + (p5 - p1));
-      y_upper += ((p3 - p2) + (p7 - p6)) * ((p6 - p2) + (p7 - p3));
-      z_lower += ((p1 - p0) + (p3 - p2)) * ((p2 - p0) + (p3 - p1));
-      z_upper += ((p5 - p4) + (p7 - p6)) * ((p6 - p4) + (p7 - p5));
-    }
-    const double stiffness = kUniform ? occupied[g] * uniform_twist : twist_stiffness[g];
-    qx[g] = twist_coefficient(x_lower, x_upper, stiffness, h);
-    qy[g] = twist_coefficient(y_lower, y_upper, stiffness, h);
-    qz[g] = twist_coefficient(z_lower, z_upper, stiffness, h);
   }
 }
 
@@ -446,22 +443,26 @@ struct LayerPasses {
       }
     }
     if (families <= kEdgeFamilies || slab >= grid.cell_slabs) return 0;  // the top layer: no diagonals
-    bool uniform = true;
+    bool uniform = grid.uniform_cells;  // the twist's constants, and the diagonals'
     for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
-    if (with_rate) return uniform ? measure_diagonals<true, true>(grid, slab, a) : measure_diagonals<true, false>(grid, slab, a);
-    return uniform ? measure_diagonals<false, true>(grid, slab, a) : measure_diagonals<false, false>(grid, slab, a);
+    return with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
+  }
+  template <bool kWithRate>
+  int diagonals_of_kind(int slab, bool uniform) const {
+    if (grid.has_twist) {
+      return uniform ? measure_diagonals<kWithRate, true, true>(grid, slab, a)
+                     : measure_diagonals<kWithRate, true, false>(grid, slab, a);
+    }
+    return uniform ? measure_diagonals<kWithRate, false, true>(grid, slab, a)
+                   : measure_diagonals<kWithRate, false, false>(grid, slab, a);
   }
   // needs measure(slab) and measure(slab + 1)
   void cells(int slab) const {
     if (slab < 0 || slab >= grid.cell_slabs) return;  // the top layer of points: its zeros stay
-    grid.uniform_cells ? cell_pass_of_kind<true>(slab) : cell_pass_of_kind<false>(slab);
-  }
-  template <bool kUniform>
-  void cell_pass_of_kind(int slab) const {
-    if (grid.has_twist) {
-      with_rate ? cell_pass<true, true, kUniform>(grid, slab, a) : cell_pass<false, true, kUniform>(grid, slab, a);
+    if (grid.uniform_cells) {
+      with_rate ? cell_pass<true, true>(grid, slab, a) : cell_pass<false, true>(grid, slab, a);
     } else {
-      with_rate ? cell_pass<true, false, kUniform>(grid, slab, a) : cell_pass<false, false, kUniform>(grid, slab, a);
+      with_rate ? cell_pass<true, false>(grid, slab, a) : cell_pass<false, false>(grid, slab, a);
     }
   }
   // edge families [first_family, end_family), each once a layer (the pass scales the unit
