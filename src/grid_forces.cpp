@@ -148,7 +148,7 @@ inline double edge_sum(const CellEdges& edges, int g) {
 // upper face of one cell and the lower of the next along d, so an edge gets, from each face F it
 // lies on, (Q_d[F - step d] - Q_d[F]) times the face's mean of its other in-plane edges.
 
-// Q_d of a cell from 4 x its faces' dot products (cell_pass).
+// Q_d of a cell from 4 x its faces' dot products (measure_diagonals).
 inline double twist_coefficient(double lower_4, double upper_4, double stiffness, double h) {
   const double lower = 0.25 * lower_4, upper = 0.25 * upper_4;
   return 0.5 * stiffness * h * ((upper - lower) / (h * h));
