@@ -48,10 +48,11 @@ inline Eigen::Vector3i unit(int axis) { return Eigen::Vector3i::Unit(axis); }
 constexpr int kZEdges = 2;  // the family of the z-edges (grid_layout.h)
 using Clock = std::chrono::steady_clock;
 
-// Pass 1 for edge family f on one z-layer: its unit vectors (scaled to forces in pass 3), lengths,
-// rates and own tensions; kKeepVector: it keeps its vectors too (twist); kUniform: a family whose springs have a cell's share of stiffness and damping times their
-// number of cells (SpringFamily::uniform; the same bits), counted from the cells' occupancy,
-// which the cell pass streams anyway: a stream of per-point values spared, two with damping.
+// Pass 1 for edge family f on one z-layer: its unit vectors (scaled to forces in pass 3),
+// lengths, rates and own tensions; kKeepVector: it keeps its vectors too (twist); kUniform: a
+// family whose springs have a cell's share of stiffness and damping times their number of cells
+// (SpringFamily::uniform; the same bits), counted from the cells' occupancy, which the cell pass
+// streams anyway: a stream of per-point values spared, two with damping.
 template <bool kWithRate, bool kKeepVector, bool kUniform>
 CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
@@ -117,7 +118,8 @@ void measure_edge_family(const GridLayout& grid, int f, int slab, const LayerArr
   if (slab >= grid.families[f].slabs) return;  // the top layer has no z-edges: their zeros stay
   const bool uniform = grid.families[f].uniform;
   if (grid.has_twist) {
-    uniform ? measure_edges<kWithRate, true, true>(grid, f, slab, a) : measure_edges<kWithRate, true, false>(grid, f, slab, a);
+    uniform ? measure_edges<kWithRate, true, true>(grid, f, slab, a)
+            : measure_edges<kWithRate, true, false>(grid, f, slab, a);
   } else {
     uniform ? measure_edges<kWithRate, false, true>(grid, f, slab, a)
             : measure_edges<kWithRate, false, false>(grid, f, slab, a);
