@@ -51,8 +51,8 @@ using Clock = std::chrono::steady_clock;
 // Pass 1 for edge family f on one z-layer: its unit vectors (scaled to forces in pass 3),
 // lengths, rates and own tensions; kKeepVector: it keeps its vectors too (twist); kUniform: a
 // family whose springs have a cell's share of stiffness and damping times their number of cells
-// (SpringFamily::uniform; the same bits), counted from the cells' occupancy, which the cell pass
-// streams anyway: a stream of per-point values spared, two with damping.
+// (SpringFamily::uniform; the same bits), counted from the cells' occupancy, which the
+// diagonals' loop streams anyway: a stream of per-point values spared, two with damping.
 template <bool kWithRate, bool kKeepVector, bool kUniform>
 CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
@@ -445,7 +445,7 @@ struct LayerPasses {
       }
     }
     if (families <= kEdgeFamilies || slab >= grid.cell_slabs) return 0;  // the top layer: no diagonals
-    bool uniform = grid.uniform_cells;  // the twist's constants, and the diagonals'
+    bool uniform = !grid.has_twist || grid.uniform_cells;  // the twist's constants, and the diagonals'
     for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
     return with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
   }
@@ -624,8 +624,8 @@ Range sweep_up(const LayerPasses& passes, const ChunkPlan& plan, CopyWaits& wait
   if (first == plan.region.end || !plan.claim(first)) return {first, first};
   waits.need(first - 1, first + 3);  // a diagonal reaches a point into the layer after next
   // the springs of the layer below that end in the first layer (nothing below the grid): its
-  // z-edges and diagonals. The z-edges' tensions need the cells of that layer only (not their
-  // crushed counts: those are the chunk below's); its x- and y-edges, which would need the layer
+  // z-edges and diagonals (not its crushed cells: the chunk below counts them). The z-edges'
+  // tensions need the cells of that layer only; its x- and y-edges, which would need the layer
   // below it, stay as they are: no gather here reads them.
   (void)passes.measure(first - 1);
   crushed += passes.measure(first);

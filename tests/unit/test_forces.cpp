@@ -568,57 +568,69 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
 }
 
 // The grid passes tell a crushed cell by the signed volume of its mean edge vectors, which they
-// take from its diagonals: the middle cell of a box mapped by an affine map of determinant 0.19
-// or 0.21 (a squash along each axis, along a slanted axis, and a squash with a shear), each
-// cell crushed exactly where cell_signed_volume() is below kCrushedVolumeFraction of its rest
-// volume; in a box numbered along z and one along x (the grid's axes turned), on 1 thread and
-// on 2 that meet at every layer around that cell (the layer's claimer alone counts it) and on 3.
+// take from its diagonals: a cell inside a box mapped by an affine map of determinant 0.19 or
+// 0.21 (a squash along each axis, along a slanted axis, and a squash with a shear), each cell
+// crushed exactly where cell_signed_volume() is below kCrushedVolumeFraction of its rest volume;
+// in a box numbered along z and one along x (the grid's axes turned), damped, in both models,
+// on 1 thread, on 2 that meet at every layer around that cell (the layer's claimer alone counts
+// it) and on 3, a thread alone above a pair from the cell's layer or the one above (whose sweep
+// recomputes the cell's layer without counting it).
 TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
   const Eigen::Matrix3d slant = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   Eigen::Matrix3d shear;
   shear << 1, 0.5, 0, 0, 1, 0.3, 0, 0, 1;
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;  // the passes' variants with rates
   ASSERT_TRUE(runtime_gives(2) && runtime_gives(3)) << "the splits' counts would go untested";
-  for (const Eigen::Vector3i& cells : {Eigen::Vector3i(12, 12, 14), Eigen::Vector3i(20, 15, 15)}) {
-    const Model model = test::box_model(cells, notes_material(0.3));
-    ASSERT_NE(model.grid_layout, nullptr);
-    const int cell = middle_cell(model);
-    const Eigen::Vector3d centre = model.rest_positions(Eigen::all, model.cell_nodes[cell]).rowwise().mean();
-    for (int kind = 0; kind < 5; ++kind) {
-      for (const double determinant : {0.19, 0.21}) {
-        Eigen::Matrix3d map = Eigen::Matrix3d::Identity();
-        map(kind % 3, kind % 3) = determinant;  // kinds 0-2: along x, y, z
-        if (kind == 3) map = slant * map * slant.transpose();  // along a slanted axis
-        if (kind == 4) map = shear * map;
-        ASSERT_NEAR(map.determinant(), determinant, 1e-12);
-        State state = rest_state(model);
-        for (const int node : model.cell_nodes[cell]) {
-          state.positions.col(node) = centre + map * (model.rest_positions.col(node) - centre);
-        }
-        int expected = 0;
-        for (int c = 0; c < model.num_cells(); ++c) {
-          expected += cell_signed_volume(model, state.positions, c) < kCrushedVolumeFraction * model.rest_cell_volume();
-        }
-        ASSERT_EQ(expected, determinant < kCrushedVolumeFraction ? 1 : 0);  // the neighbours stay whole
-        const std::string what = ::testing::PrintToString(cells.transpose()) + ", kind " + std::to_string(kind) +
-                                 ", determinant " + std::to_string(determinant);
-        std::vector<double> scratch;
-        GridSplit split;
-        Eigen::Matrix3Xd forces;
-        EXPECT_EQ(grid_spring_forces(*model.grid_layout, state, false, 1, scratch, split, forces).crushed, expected)
-            << what;
-        const int layers = model.grid_layout->points.z();
-        const int layer = model.node_grid_index[model.cell_nodes[cell][0]][model.major_axis];
-        std::vector<std::vector<int>> splits;
-        for (int meet = layer - 1; meet <= layer + 2; ++meet) splits.push_back({0, meet, layers});
-        // a thread alone above a pair, from the cell's layer or the one above (whose sweep
-        // recomputes the cell's layer, not counting it)
-        for (int alone = layer; alone <= layer + 1; ++alone) splits.push_back({0, 1, alone, layers});
-        for (const std::vector<int>& first_layers : splits) {
-          split = GridSplit{first_layers, {}, 0, true};
-          const int threads = static_cast<int>(first_layers.size()) - 1;
-          EXPECT_EQ(grid_spring_forces(*model.grid_layout, state, false, threads, scratch, split, forces).crushed,
-                    expected)
-              << what << ", split " << ::testing::PrintToString(first_layers);
+  for (const Eigen::Vector3i& cells : {Eigen::Vector3i(14, 14, 16), Eigen::Vector3i(20, 15, 15)}) {
+    for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+      LatticeDesc desc = box_lattice(cells, Eigen::Vector3d::Constant(0.01), damped);
+      desc.model = cell_model;
+      Result<Model> built = build_model(desc);
+      ASSERT_TRUE(built.ok()) << built.message();
+      const Model& model = built.value();
+      ASSERT_NE(model.grid_layout, nullptr);
+      ASSERT_GE(grid_threads(*model.grid_layout, 3), 3);
+      const auto inside = std::find(model.cell_grid_index.begin(), model.cell_grid_index.end(), cells / 2);
+      ASSERT_NE(inside, model.cell_grid_index.end());
+      const int cell = static_cast<int>(inside - model.cell_grid_index.begin());
+      const Eigen::Vector3d centre = model.rest_positions(Eigen::all, model.cell_nodes[cell]).rowwise().mean();
+      for (int kind = 0; kind < 5; ++kind) {
+        for (const double determinant : {0.19, 0.21}) {
+          Eigen::Matrix3d map = Eigen::Matrix3d::Identity();
+          map(kind % 3, kind % 3) = determinant;  // kinds 0-2: along x, y, z
+          if (kind == 3) map = slant * map * slant.transpose();  // along a slanted axis
+          if (kind == 4) map = shear * map;
+          ASSERT_NEAR(map.determinant(), determinant, 1e-12);
+          State state = rest_state(model);
+          for (const int node : model.cell_nodes[cell]) {
+            state.positions.col(node) = centre + map * (model.rest_positions.col(node) - centre);
+          }
+          int expected = 0;
+          for (int c = 0; c < model.num_cells(); ++c) {
+            expected += cell_signed_volume(model, state.positions, c) < kCrushedVolumeFraction * model.rest_cell_volume();
+          }
+          ASSERT_EQ(expected, determinant < kCrushedVolumeFraction ? 1 : 0);  // the neighbours stay whole
+          const std::string what = ::testing::PrintToString(cells.transpose()) + ", " + cell_model_name(cell_model) +
+                                   ", kind " + std::to_string(kind) + ", determinant " + std::to_string(determinant);
+          std::vector<double> scratch;
+          GridSplit split;
+          Eigen::Matrix3Xd forces;
+          EXPECT_EQ(grid_spring_forces(*model.grid_layout, state, true, 1, scratch, split, forces).crushed, expected)
+              << what;
+          const int layers = model.grid_layout->points.z();
+          const int layer = model.node_grid_index[model.cell_nodes[cell][0]][model.major_axis];
+          std::vector<std::vector<int>> splits;
+          for (int meet = layer - 1; meet <= layer + 2; ++meet) splits.push_back({0, meet, layers});
+          for (int alone = layer; alone <= layer + 1; ++alone) splits.push_back({0, 1, alone, layers});
+          for (const std::vector<int>& first_layers : splits) {
+            split = GridSplit{first_layers, {}, 0, true};
+            const int threads = static_cast<int>(first_layers.size()) - 1;
+            EXPECT_EQ(grid_spring_forces(*model.grid_layout, state, true, threads, scratch, split, forces).crushed,
+                      expected)
+                << what << ", split " << ::testing::PrintToString(first_layers);
+            ASSERT_EQ(split.first_layers, first_layers) << what << ": the split was not used as it was";
+          }
         }
       }
     }
