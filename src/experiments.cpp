@@ -142,6 +142,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
   LatticeDesc desc = box_lattice(settings.cells, settings.cell_size, settings.material);
   desc.model = settings.model;
   desc.exact_bending = settings.exact_bending;
+  desc.law = settings.law;
   Result<Model> built = build_model(desc);
   if (!built) return built.status();
 

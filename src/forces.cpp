@@ -31,6 +31,7 @@
 #include "force_passes.h"
 #include "grid_forces.h"
 #include "input_checks.h"
+#include "neo_hookean_cell.h"
 #include "thread_shares.h"
 #include "twist.h"
 
@@ -106,46 +107,73 @@ void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen:
   for (int s = tile; s < end; ++s) measure_spring<kWithRate>(model, x, v, s, ws);
 }
 
-// Where the cell pass puts twist forces (exact bending): the forces of the block whose nodes end
-// at `block_end`, and its halo past it. A cell goes with the block of its corner 0. Node numbers
-// rise along every grid axis, so corner 7 has the cell's highest number, and the cell's 0-7
-// diagonal is a spring of corner 0: every corner lies in the block or within its halo.
-struct TwistTarget {
+// Where the cell pass puts forces on a cell's corners (the twist of exact bending, the
+// neo-Hookean term): the forces of the block whose nodes end at `block_end`, and its halo past it.
+// A cell goes with the block of its corner 0. Node numbers rise along every grid axis, so corner
+// 7 has the cell's highest number, and the cell's 0-7 diagonal is a spring of corner 0: every
+// corner lies in the block or within its halo.
+struct CornerTarget {
   Eigen::Matrix3Xd& forces;
   Eigen::Matrix3Xd& halo;
   int block_end;
 };
 
-// The twist forces of cell c on its corners.
-inline void add_twist_forces(const Model& model, int c, const ForceWorkspace& ws, const TwistTarget& target) {
-  std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
-  for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(model.cell_edges[c][e]);
-  const std::array<Eigen::Vector3d, kCornersPerCell> twist =
-      twist_corner_forces(edge_vectors, model.cell_size.x(), model.cell_twist_stiffness[c]);
+inline void add_corner_forces(const Model& model, int c, const std::array<Eigen::Vector3d, kCornersPerCell>& f,
+                              const CornerTarget& target) {
   for (int corner = 0; corner < kCornersPerCell; ++corner) {
     const int j = model.cell_nodes[c][corner];
     if (j < target.block_end) {
-      target.forces.col(j) += twist[corner];
+      target.forces.col(j) += f[corner];
     } else {
-      target.halo.col(j - target.block_end) += twist[corner];
+      target.halo.col(j - target.block_end) += f[corner];
     }
   }
 }
 
+// The twist forces of cell c on its corners.
+inline void add_twist_forces(const Model& model, int c, const ForceWorkspace& ws, const CornerTarget& target) {
+  std::array<Eigen::Vector3d, kEdgesPerCell> edge_vectors;
+  for (int e = 0; e < kEdgesPerCell; ++e) edge_vectors[e] = ws.spring_vector.col(model.cell_edges[c][e]);
+  add_corner_forces(model, c, twist_corner_forces(edge_vectors, model.cell_size.x(), model.cell_twist_stiffness[c]),
+                    target);
+}
+
+// Diagonal k's spring runs from corner k unless corner 7 - k comes first in node order
+// (Model::major_axis): then its vector is the negative of corner 7 - k minus corner k.
+struct DiagonalSigns {
+  double sign[4];
+  explicit DiagonalSigns(const Model& model) {
+    for (int k = 0; k < 4; ++k) sign[k] = (k >> model.major_axis) & 1 ? -1.0 : 1.0;
+  }
+};
+
+// The mean edge vectors of cell c from its diagonals (pass 1's vectors):
+// sum_k s_a(k) x_k = sum over diagonals c -> 7-c of s_a(7-c) (x_{7-c} - x_c).
+inline CellFrame frame_from_diagonals(const Model& model, const ForceWorkspace& ws, const DiagonalSigns& signs, int c) {
+  const std::array<int, 4>& diagonals = model.cell_diagonals[c];
+  const Eigen::Vector3d d0 = signs.sign[0] * ws.spring_vector.col(diagonals[0]);
+  const Eigen::Vector3d d1 = signs.sign[1] * ws.spring_vector.col(diagonals[1]);
+  const Eigen::Vector3d d2 = signs.sign[2] * ws.spring_vector.col(diagonals[2]);
+  const Eigen::Vector3d d3 = signs.sign[3] * ws.spring_vector.col(diagonals[3]);
+  // s_a(7 - k) for k = 0..3: x: + - + -, y: + + - -, z: + + + +
+  CellFrame frame;
+  frame.edge[0] = 0.25 * ((d0 - d1) + (d2 - d3));
+  frame.edge[1] = 0.25 * ((d0 + d1) - (d2 + d3));
+  frame.edge[2] = 0.25 * ((d0 + d1) + (d2 + d3));
+  return frame;
+}
+
 // Pass 2 over cells [begin, end). Correction tension T_a = V0 (D (eps + beta d(eps)/dt))_a / (4 a0)
 // on each a-edge of a cell, and the crushed flag from the signed volume of the mean edge vectors,
-// which the diagonals give: sum_k s_a(k) x_k = sum over diagonals c -> 7-c of s_a(7-c) (x_{7-c} - x_c).
-// With a twist target, also the twist forces (exact bending). Returns the number of crushed cells.
+// which the diagonals give. With a corner target, also the twist forces (exact bending). Returns
+// the number of crushed cells.
 int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws,
-              const TwistTarget* twist = nullptr) {
+              const CornerTarget* twist = nullptr) {
   const Eigen::Vector3d& size = model.cell_size;
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * size.array()).inverse();
   const Eigen::Array3d tension_per_stress = size.prod() * inverse_edge_sum;
   const double crushed_volume = kCrushedVolumeFraction * size.prod();
-  // diagonal k's spring runs from corner k unless corner 7 - k comes first in node order
-  // (Model::major_axis): then its vector is the negative of corner 7 - k minus corner k
-  double diagonal_sign[4];
-  for (int k = 0; k < 4; ++k) diagonal_sign[k] = (k >> model.major_axis) & 1 ? -1.0 : 1.0;
+  const DiagonalSigns signs(model);
   int crushed = 0;
   for (int c = begin; c < end; ++c) {
     const std::array<int, kEdgesPerCell>& edges = model.cell_edges[c];
@@ -163,24 +191,38 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
     const Eigen::Vector3d stress = model.cell_correction[c] * strain;
     ws.cell_tension.col(c) = (tension_per_stress * stress.array()).matrix();
 
-    // 4 x each mean edge vector, from the diagonals (corner 7 - k minus corner k)
-    const std::array<int, 4>& diagonals = model.cell_diagonals[c];
-    const Eigen::Vector3d d0 = diagonal_sign[0] * ws.spring_vector.col(diagonals[0]);
-    const Eigen::Vector3d d1 = diagonal_sign[1] * ws.spring_vector.col(diagonals[1]);
-    const Eigen::Vector3d d2 = diagonal_sign[2] * ws.spring_vector.col(diagonals[2]);
-    const Eigen::Vector3d d3 = diagonal_sign[3] * ws.spring_vector.col(diagonals[3]);
-    // s_a(7 - k) for k = 0..3: x: + - + -, y: + + - -, z: + + + +
-    const Eigen::Vector3d edge_x = (d0 - d1) + (d2 - d3);
-    const Eigen::Vector3d edge_y = (d0 + d1) - (d2 + d3);
-    const Eigen::Vector3d edge_z = (d0 + d1) + (d2 + d3);
-    // the 1/4 of each mean edge vector gives 1/64 on the volume
-    const bool is_crushed = edge_x.dot(edge_y.cross(edge_z)) < 64.0 * crushed_volume;
+    const bool is_crushed = frame_from_diagonals(model, ws, signs, c).volume() < crushed_volume;
     ws.cell_crushed[c] = is_crushed;
     crushed += is_crushed;
 
     if (twist != nullptr && model.cell_twist_stiffness[c] != 0.0) add_twist_forces(model, c, ws, *twist);
   }
   return crushed;
+}
+
+// Pass 2 of a neo-Hookean body (Model::cell_law) over cells [begin, end): no correction tension
+// and no crushed cells (the law's barrier replaces the inversion recovery); with a target, the
+// cell term's forces and the twist's go straight onto the corners. Returns 0 crushed cells.
+int neo_hookean_cell_pass(const Model& model, int begin, int end, ForceWorkspace& ws, const CornerTarget* target) {
+  const DiagonalSigns signs(model);
+  for (int c = begin; c < end; ++c) {
+    ws.cell_tension.col(c).setZero();
+    ws.cell_crushed[c] = 0;
+    if (target == nullptr) continue;
+    MeanEdgeGradient gradient;
+    (void)neo_hookean_cell_energy(model.law_constants[model.cell_material[c]], frame_from_diagonals(model, ws, signs, c),
+                                  &gradient);
+    add_corner_forces(model, c, corner_forces(gradient), *target);
+    if (model.cell_twist_stiffness[c] != 0.0) add_twist_forces(model, c, ws, *target);
+  }
+  return 0;
+}
+
+// Pass 2 of either law.
+int any_cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws,
+                  const CornerTarget* target) {
+  if (model.cell_law == CellLaw::kNeoHookean) return neo_hookean_cell_pass(model, begin, end, ws, target);
+  return cell_pass(model, with_rate, begin, end, ws, target);
 }
 
 // Total tension of spring s: its own (pass 1) plus the correction of each cell it is an edge of.
@@ -278,7 +320,7 @@ void prepare(const Model& model, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
 // The blocks [begin, end) of one thread's share of the passes; barrier() waits for every share
 // (nothing when one thread runs them all). Every thread finds the same crushed count, so all or
 // none wait at the inversion recovery's barrier.
-template <bool kWithTwist, typename Finish, typename Barrier>
+template <bool kWithCornerForces, typename Finish, typename Barrier>
 void run_block_passes(const Model& model, const State& state, bool with_rate, int begin_block, int end_block,
                       bool first_share, const Barrier& barrier, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
                       const Finish& finish) {
@@ -297,11 +339,12 @@ void run_block_passes(const Model& model, const State& state, bool with_rate, in
   }
   barrier();
   for (int b = begin_block; b < end_block; ++b) {
-    // the cells whose corner 0 is in the block, so that their twist forces stay in its nodes
+    // the cells whose corner 0 is in the block, so that their corner forces stay in its nodes
     const int first_cell = first_cell_from_node(model, force_block_begin(model, b));
     const int last_cell = first_cell_from_node(model, force_block_end(model, b));
-    const TwistTarget twist{forces, ws.block_halo[b], force_block_end(model, b)};
-    ws.block_crushed[b] = cell_pass(model, with_rate, first_cell, last_cell, ws, kWithTwist ? &twist : nullptr);
+    const CornerTarget target{forces, ws.block_halo[b], force_block_end(model, b)};
+    ws.block_crushed[b] =
+        any_cell_pass(model, with_rate, first_cell, last_cell, ws, kWithCornerForces ? &target : nullptr);
   }
   barrier();
   int crushed = 0;
@@ -320,7 +363,7 @@ void run_block_passes(const Model& model, const State& state, bool with_rate, in
 // The passes, the blocks shared among threads (each a contiguous part, as a static schedule
 // would); finish(n) is called once for every node, after its force. Returns the largest value
 // finish gave (NaN wins).
-template <bool kWithTwist, typename Finish>
+template <bool kWithCornerForces, typename Finish>
 double run_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                   Eigen::Matrix3Xd& forces, const Finish& finish) {
   prepare(model, ws, forces);
@@ -328,7 +371,7 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const int threads = std::max(1, std::min(options.threads, blocks));
   run_shares(threads, [&](int share, int shares, const auto& barrier) {
-    run_block_passes<kWithTwist>(model, state, with_rate, blocks * share / shares, blocks * (share + 1) / shares,
+    run_block_passes<kWithCornerForces>(model, state, with_rate, blocks * share / shares, blocks * (share + 1) / shares,
                                  share == 0, barrier, ws, forces, finish);
   });
   double fastest_sq = 0.0;
@@ -449,7 +492,8 @@ template <typename Finish>
 double force_sweep(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick = nullptr) {
   if (model.grid_layout) return grid_passes(model, state, options, ws, forces, finish, kick);
-  return model.has_twist ? run_passes<true>(model, state, options, ws, forces, finish)
+  const bool corner_forces = model.has_twist || model.cell_law == CellLaw::kNeoHookean;
+  return corner_forces ? run_passes<true>(model, state, options, ws, forces, finish)
                          : run_passes<false>(model, state, options, ws, forces, finish);
 }
 
@@ -458,7 +502,7 @@ double force_sweep(const Model& model, const State& state, const ForceOptions& o
 void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorkspace& ws) {
   ws.resize(model);
   measure_springs<false>(model, x, x, 0, model.num_springs(), ws);
-  (void)cell_pass(model, false, 0, model.num_cells(), ws);
+  (void)any_cell_pass(model, false, 0, model.num_cells(), ws, nullptr);
   for (int s = 0; s < model.num_springs(); ++s) ws.spring_tension[s] = spring_tension(model, ws, s);
 }
 
@@ -529,7 +573,11 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
     energy += 0.5 * model.spring_stiffness[s] * stretch * stretch;
   }
   const double rest_volume = model.rest_cell_volume();
+  const bool neo_hookean = model.cell_law == CellLaw::kNeoHookean;
   for (int c = 0; c < model.num_cells(); ++c) {
+    if (neo_hookean) {
+      energy += neo_hookean_cell_energy(model.law_constants[model.cell_material[c]], cell_frame(model, x, c), nullptr);
+    }
     Eigen::Vector3d strain;
     for (int axis = 0; axis < 3; ++axis) {
       double sum = 0.0;
@@ -547,7 +595,7 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
                              [](int, const Eigen::Vector3d&) {});
     }
     const double ratio = cell_frame(model, x, c).volume() / rest_volume;
-    if (ratio < kCrushedVolumeFraction) {
+    if (!neo_hookean && ratio < kCrushedVolumeFraction) {
       const double excess = ratio - kCrushedVolumeFraction;
       energy += 0.5 * model.cell_inversion_stiffness[c] * rest_volume * excess * excess;
     }

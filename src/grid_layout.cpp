@@ -68,7 +68,8 @@ void set_uniform_family(GridLayout& grid, int f) {
 }  // namespace
 
 std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double min_fill) {
-  if (model.num_cells() == 0 ||
+  // the grid passes have the springs law's correction only: a neo-Hookean body takes the lists
+  if (model.cell_law != CellLaw::kSprings || model.num_cells() == 0 ||
       static_cast<int>(model.cell_grid_index.size()) != model.num_cells() ||
       static_cast<int>(model.node_grid_index.size()) != model.num_nodes()) {
     return nullptr;

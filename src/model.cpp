@@ -12,6 +12,7 @@
 #include "cubespring/forces.h"
 #include "force_blocks.h"
 #include "grid_layout.h"
+#include "neo_hookean_cell.h"
 
 namespace cubespring {
 namespace {
@@ -126,6 +127,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   if (Status status = check_desc(desc); !status) return status;
   Model model;
   model.cell_model = desc.model;
+  model.cell_law = desc.law;
   model.cell_size = desc.cell_size;
   model.origin = desc.origin;
   model.materials = desc.materials;
@@ -139,7 +141,13 @@ Result<Model> build_model(const LatticeDesc& desc) {
         calibrate_cell(desc.model, desc.materials[m], desc.cell_size, desc.exact_bending);
     if (!calibration) return Status::error("material " + std::to_string(m) + ": " + calibration.message());
     calibrations.push_back(calibration.value());
+    if (desc.law == CellLaw::kNeoHookean) {
+      const CellCalibration& c = calibrations.back();
+      model.law_constants.push_back(neo_hookean_constants(shear_modulus(desc.materials[m]), bulk_modulus(desc.materials[m]),
+                                                          desc.cell_size, c.edge_stiffness, c.diagonal_stiffness));
+    }
   }
+  const bool springs_law = desc.law == CellLaw::kSprings;
 
   // cells in grid order, duplicates refused
   std::vector<int> cell_order(desc.cells.size());
@@ -192,8 +200,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
     const CellCalibration& calibration = calibrations[m];
     model.cell_grid_index[c] = desc.cells[source];
     model.cell_material[c] = m;
-    model.cell_correction[c] = calibration.correction;
-    model.cell_inversion_stiffness[c] = kInversionStiffnessFactor * material.young_modulus;
+    model.cell_correction[c] = springs_law ? calibration.correction : Eigen::Matrix3d::Zero();
+    model.cell_inversion_stiffness[c] = springs_law ? kInversionStiffnessFactor * material.young_modulus : 0.0;
     model.cell_twist_stiffness[c] = calibration.twist_stiffness;
     model.has_twist |= calibration.twist_stiffness > 0.0;
     for (int corner = 0; corner < kCornersPerCell; ++corner) {

@@ -18,6 +18,7 @@
 #include "cubespring/forces.h"
 #include "force_passes.h"
 #include "thread_shares.h"
+#include "neo_hookean_cell.h"
 #include "twist.h"
 
 namespace cubespring {
@@ -191,6 +192,29 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
   }
 }
 
+// Neo-Hookean cell term (docs/model-neo-hookean.md section 4): the 9x9 Hessian H in the mean
+// edge vectors m_p = 1/4 sum_k s_p(k) x_k gives the corner blocks sum_pq s_p(k) s_q(l) / 16 H_pq;
+// the approximation takes H's positive part (its negative eigenvalues set to zero).
+void StiffnessAssembler::add_neo_hookean(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact,
+                                         double stiffness_scale, const NodeRows& rows, SparseMatrix& matrix) const {
+  MeanEdgeHessian h = neo_hookean_cell_hessian(model.law_constants[model.cell_material[c]], cell_frame(model, x, c));
+  if (!exact) {
+    const Eigen::SelfAdjointEigenSolver<MeanEdgeHessian> solver(h);
+    h = solver.eigenvectors() * solver.eigenvalues().cwiseMax(0.0).asDiagonal() * solver.eigenvectors().transpose();
+  }
+  h *= stiffness_scale / 16.0;
+  for (int p = 0; p < kCornersPerCell; ++p) {
+    if (!rows.has(model.cell_nodes[c][p])) continue;
+    for (int q = 0; q < kCornersPerCell; ++q) {
+      Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) block += (corner_side(p, a) * corner_side(q, b)) * h.block<3, 3>(3 * a, 3 * b);
+      }
+      add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+    }
+  }
+}
+
 void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                   double stiffness_scale, double damping_scale, SparseMatrix& matrix, int threads) {
   rebuild_pattern_if_handed_over(model);
@@ -281,6 +305,13 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
   for (int c = corner_0_below(rows.begin - cell_span_); c < cell_end; ++c) {
     const auto& corners = model.cell_nodes[c];
     if (std::none_of(corners.begin(), corners.end(), [&](int n) { return rows.has(n); })) continue;
+    if (model.cell_law == CellLaw::kNeoHookean) {
+      add_neo_hookean(model, x, c, exact, stiffness_scale, rows, matrix);
+      if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
+        add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], rows, matrix);
+      }
+      continue;
+    }
     const Eigen::Matrix3d& d = exact ? model.cell_correction[c] : positive_correction_[c];
     const double beta = model.materials[model.cell_material[c]].stiffness_damping;
     const Eigen::Matrix3d weighted = rest_volume * (stiffness_scale + damping_scale * beta) * d;

@@ -32,6 +32,7 @@ struct MeasureOptions {
   double gravity = 9.81;
   std::string control = "displacement";
   std::string model = "baudet2007";
+  std::string law = "springs";
   ExactBendingParameters exact_bending;
   bool json = false;
   std::string png;        // empty: no picture
@@ -105,7 +106,8 @@ nlohmann::json report_json(const ExperimentResult& r) {
                  {"cell_size", {s.cell_size.x(), s.cell_size.y(), s.cell_size.z()}},
                  {"strain", s.strain},
                  {"gravity", s.gravity},
-                 {"model", cell_model_name(s.model)}};
+                 {"model", cell_model_name(s.model)},
+                 {"law", cell_law_name(s.law)}};
   if (r.experiment == Experiment::kShear) j["inputs"]["control"] = shear_control_name(s.shear_control);
   if (s.model == CellModel::kExactBending) {
     j["inputs"]["edge_fraction"] = s.exact_bending.edge_fraction;
@@ -146,10 +148,10 @@ void print_row(const char* name, const std::optional<double>& measured, const st
 
 void report_table(const ExperimentResult& r) {
   const ExperimentSettings& s = r.settings;
-  std::printf("%s: E = %g Pa, nu = %g, rho = %g kg/m^3, %d x %d x %d cells of %g x %g x %g m, model %s\n",
+  std::printf("%s: E = %g Pa, nu = %g, rho = %g kg/m^3, %d x %d x %d cells of %g x %g x %g m, model %s, law %s\n",
               experiment_name(r.experiment), s.material.young_modulus, s.material.poisson_ratio, s.material.density,
               s.cells.x(), s.cells.y(), s.cells.z(), s.cell_size.x(), s.cell_size.y(), s.cell_size.z(),
-              cell_model_name(s.model));
+              cell_model_name(s.model), cell_law_name(s.law));
   if (r.experiment == Experiment::kShear) std::printf("shear control: %s\n", shear_control_name(s.shear_control));
   if (r.tip_deflection) {
     std::printf("  %-16s %14s\n", "", "tip [m]");
@@ -202,6 +204,7 @@ int run_measure(const MeasureOptions& o) {
   settings.shear_control = o.control == "force" ? ShearControl::kForce : ShearControl::kDisplacement;
   settings.model = parse_cell_model(o.model).value();  // CLI11 checked the name
   settings.exact_bending = o.exact_bending;
+  settings.law = parse_cell_law(o.law).value();  // CLI11 checked the name
   const std::string default_cells = experiment.value() == Experiment::kCantilever ? "16,4,4" : "1,1,1";
   Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
   Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
@@ -273,6 +276,11 @@ Command add_measure_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--model", options->model, "cell model: baudet2007 (the paper) or exact-bending")
       ->check(CLI::IsMember({"baudet2007", "exact-bending"}))
+      ->capture_default_str();
+  cmd->add_option("--law", options->law,
+                  "large-strain law of the cells: springs (the cell model as calibrated) or neo-hookean "
+                  "(docs/model-neo-hookean.md)")
+      ->check(CLI::IsMember({"springs", "neo-hookean"}))
       ->capture_default_str();
   cmd->add_option("--edge-fraction", options->exact_bending.edge_fraction,
                   "exact-bending: edge stiffness as a fraction beta of E h")

@@ -62,7 +62,7 @@ Status read_box(const JsonFields& fields, Box& box) {
 }
 
 Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSpec& organ) {
-  if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "materials", "fixed_regions",
+  if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "law", "materials", "fixed_regions",
                                     "friction", "face_contacts", "contact_offset"});
       !s) {
     return s;
@@ -79,6 +79,11 @@ Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSp
   Result<CellModel> parsed = parse_cell_model(model);
   if (!parsed) return fields.error("model", "must be \"baudet2007\" or \"exact-bending\", got \"" + model + "\"");
   organ.model = *parsed;
+  std::string law = cell_law_name(organ.law);
+  if (Status s = fields.string("law", law); !s) return s;
+  Result<CellLaw> parsed_law = parse_cell_law(law);
+  if (!parsed_law) return fields.error("law", "must be \"neo-hookean\" or \"springs\", got \"" + law + "\"");
+  organ.law = *parsed_law;
   if (fields.has("materials")) {
     Result<JsonFields> materials = fields.object("materials");
     if (!materials) return materials.status();

@@ -113,6 +113,7 @@ Status SceneWorld::build_organ(const Scene& scene) {
 
   bullet::SoftBodySettings settings;
   settings.lattice = lattice_from_voxels(*voxels, *materials, spec.model);
+  settings.law = spec.law;
   settings.visual_mesh = organ_mesh_;
   settings.integrator = scene.integrator;
   settings.contact.friction = spec.friction;

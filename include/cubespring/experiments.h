@@ -35,6 +35,7 @@ struct ExperimentSettings {
   Material material;
   CellModel model = CellModel::kBaudet2007;
   ExactBendingParameters exact_bending;           ///< used when model is kExactBending
+  CellLaw law = CellLaw::kSprings;                ///< the cells' large-strain law (cell_law.h)
   Eigen::Vector3i cells{1, 1, 1};                 ///< block size in cells
   Eigen::Vector3d cell_size{0.01, 0.01, 0.01};    ///< [m]
   /// Load size as the continuum strain it causes [-]: sigma = E S (elongation), gamma = S (shear),

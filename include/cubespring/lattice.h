@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "cubespring/cell_law.h"
 #include "cubespring/material.h"
 #include "cubespring/result.h"
 
@@ -48,6 +49,9 @@ struct LatticeDesc {
   std::vector<int> cell_material;               ///< Material index per cell; empty means all 0.
   CellModel model = CellModel::kBaudet2007;
   ExactBendingParameters exact_bending;  ///< used by CellModel::kExactBending
+  /// What the cells make of large strain (cell_law.h): kSprings, the cell model as calibrated
+  /// (the default), or kNeoHookean, for soft tissue at large strain.
+  CellLaw law = CellLaw::kSprings;
 };
 
 /// The most cells a body may have: its springs (up to 16 a cell) are indexed by int.

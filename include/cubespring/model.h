@@ -29,6 +29,12 @@ struct GridLayout;  // internal: src/grid_layout.h
 /// by build_model(); the time-varying part lives in State. Arrays are flat, one entry per item.
 struct Model {
   CellModel cell_model = CellModel::kBaudet2007;
+  /// kNeoHookean: each cell's correction and inversion recovery are replaced by the neo-Hookean
+  /// cell term of law_constants (cell_correction and cell_inversion_stiffness are zero); such a
+  /// body steps on the spring lists (the grid passes have no neo-Hookean term yet).
+  CellLaw cell_law = CellLaw::kSprings;
+  /// Per material: the neo-Hookean cell term's constants (empty for kSprings).
+  std::vector<NeoHookeanConstants> law_constants;
   Eigen::Vector3d cell_size{0, 0, 0};  ///< (hx, hy, hz) [m]
   Eigen::Vector3d origin{0, 0, 0};     ///< [m]
   /// The materials the arrays below were made from: read-only after build_model() (the masses,

@@ -20,10 +20,11 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 enum class StiffnessKind {
   /// The exact Hessian of the elastic energy (tested against finite differences). Can be
   /// indefinite: compressed springs, the correction's D (indefinite for every nu != 1/4, though
-  /// springs plus D are not), and the curvature of the inversion term.
+  /// springs plus D are not), the curvature of the inversion term, the neo-Hookean cell term.
   kExact,
   /// A positive semi-definite approximation for implicit steps (docs/model-baudet2007.md section 6):
-  /// compressive geometric terms dropped and the correction's D replaced by its PSD part.
+  /// compressive geometric terms dropped and the correction's D, or the neo-Hookean cell term's
+  /// Hessian, replaced by its PSD part.
   kPositiveSemiDefinite,
 };
 
@@ -68,6 +69,8 @@ class StiffnessAssembler {
                  const Eigen::Matrix3d& block) const;
   void add_twist(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness,
                  const NodeRows& rows, SparseMatrix& matrix) const;
+  void add_neo_hookean(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness_scale,
+                       const NodeRows& rows, SparseMatrix& matrix) const;
 
   SparseMatrix pattern_;
   bool pattern_handed_over_ = false;                      // by assemble_once

@@ -89,6 +89,17 @@ TEST(Cli, ExactBendingModelIsSelectableAndNamed) {
   EXPECT_NE(bad.out.find("cubic cells only"), std::string::npos) << bad.out;
 }
 
+TEST(Cli, LawIsSelectableAndNamed) {
+  EXPECT_EQ(run_json("measure elongation")["inputs"]["law"], "springs");
+  const nlohmann::json j = run_json("measure elongation --law neo-hookean --model exact-bending --poisson 0.49 --cells 4,4,4");
+  EXPECT_EQ(j["inputs"]["law"], "neo-hookean");
+  EXPECT_NEAR(j["error"]["young_modulus"].get<double>(), 0.0, 1e-3);
+  EXPECT_NEAR(j["error"]["poisson_ratio"].get<double>(), 0.0, 1e-3);
+  const ToolRun bad = run_tool("measure elongation --law mooney");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("--law"), std::string::npos) << bad.out;
+}
+
 // Width and height from a PNG's header (the IHDR chunk follows the 8-byte signature).
 std::pair<int, int> png_size(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");

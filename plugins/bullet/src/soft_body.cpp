@@ -31,7 +31,9 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   if (settings.integrator == Integrator::kImplicitEuler && !(settings.max_implicit_step > 0.0)) {
     return Status::error("max implicit step " + std::to_string(settings.max_implicit_step) + " s must be > 0");
   }
-  Result<Model> model = build_model(settings.lattice);
+  LatticeDesc lattice = settings.lattice;
+  lattice.law = settings.law;
+  Result<Model> model = build_model(lattice);
   if (!model) return model.status();
   std::unique_ptr<SoftBody> body(new SoftBody());
   body->model_ = std::move(model).value();
