@@ -38,7 +38,7 @@ struct OrganSpec {
   double cell_size = 0.008;         ///< cubic cell edge [m]; used when cells_across is 0
   int cells_across = 0;             ///< when > 0: this many cells along the mesh's longest side
   CellModel model = CellModel::kExactBending;
-  CellLaw law = CellLaw::kSprings;  ///< the cells' large-strain law (cell_law.h)
+  CellLaw law = CellLaw::kNeoHookean;  ///< the cells' large-strain law (cell_law.h)
   /// Tissue by the mesh's material name (or part name); parts not listed get default_tissue().
   std::map<std::string, Material> materials;
   std::map<std::string, int> material_lines;  ///< line of each materials entry in the scene file

@@ -1,7 +1,11 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Indentation of a block by a rigid sphere against Hertz's law, F = 4/3 E / (1 - nu^2) R^1/2 d^3/2
-// (slow: label validation).
+// Indentation of a block by a rigid sphere against Hertz's law, F = 4/3 E / (1 - nu^2) R^1/2 d^3/2,
+// corrected for a layer of finite thickness t bonded to its base (Dimitriadis, Horkay, Maresca,
+// Kachar, Chadwick, Biophys. J. 82, 2002: F = F_Hertz (1 - 2 a0/pi chi + 4 a0^2/pi^2 chi^2
+// - 8/pi^3 (a0^3 + 4 pi^2/15 b0) chi^3 - 16 a0/pi^4 (a0^3 + 3 pi^2/5 b0) chi^4), chi = sqrt(R d)/t;
+// at nu = 0.5 its coefficients are 1.133, 1.283, 0.769, 0.0975). Here t = 2R: the correction is
+// 19-24% at 0.13-0.2 R. (slow: label validation).
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -13,7 +17,25 @@
 namespace cubespring {
 namespace {
 
-TEST(BulletIndentation, SphereForceFollowsHertzWithinFifteenPercent) {
+// The bonded layer's factor on Hertz's force at chi = sqrt(R d) / t.
+double bonded_layer_factor(double chi, double nu) {
+  const double pi = 3.14159265358979323846;
+  const double a0 = -(1.2876 - 1.4678 * nu + 1.3442 * nu * nu) / (1.0 - nu);
+  const double b0 = (0.6387 - 1.0277 * nu + 1.5164 * nu * nu) / (1.0 - nu);
+  return 1.0 - 2.0 * a0 / pi * chi + 4.0 * a0 * a0 / (pi * pi) * chi * chi -
+         8.0 / (pi * pi * pi) * (a0 * a0 * a0 + 4.0 * pi * pi / 15.0 * b0) * chi * chi * chi -
+         16.0 * a0 / (pi * pi * pi * pi) * (a0 * a0 * a0 + 3.0 * pi * pi / 5.0 * b0) * chi * chi * chi * chi;
+}
+
+TEST(BulletIndentation, LayerFactorHasThePublishedCoefficientsAtHalf) {
+  // F / F_Hertz = 1 + 1.133 chi + 1.283 chi^2 + 0.769 chi^3 + 0.0975 chi^4 at nu = 0.5
+  for (double chi : {0.1, 0.2, 0.4}) {
+    const double published = 1 + 1.133 * chi + 1.283 * chi * chi + 0.769 * std::pow(chi, 3) + 0.0975 * std::pow(chi, 4);
+    EXPECT_NEAR(bonded_layer_factor(chi, 0.5), published, 2e-3) << "chi " << chi;
+  }
+}
+
+TEST(BulletIndentation, SphereForceFollowsHertzOnABondedLayerWithinTenPercent) {
   const double h = 1e-3;
   const Eigen::Vector3i cells(24, 24, 12);
   const double radius = 6 * h;
@@ -50,13 +72,15 @@ TEST(BulletIndentation, SphereForceFollowsHertzWithinFifteenPercent) {
       // rises monotonically (sampled), and matches Hertz past the first cell of depth's worth
       EXPECT_GT(force, previous) << "at depth " << depth;
       previous = force;
-      const double hertz = modulus * std::sqrt(radius) * std::pow(depth, 1.5);
-      std::printf("depth %.3f R: force %.5f N, Hertz %.5f N, ratio %.3f\n", depth / radius, force, hertz, force / hertz);
+      const double hertz = modulus * std::sqrt(radius) * std::pow(depth, 1.5) *
+                           bonded_layer_factor(std::sqrt(radius * depth) / top, material.poisson_ratio);
+      std::printf("depth %.3f R: force %.5f N, Hertz on the layer %.5f N, ratio %.3f\n", depth / radius, force, hertz,
+                  force / hertz);
       if (depth >= 0.1 * radius) checked.emplace_back(force, hertz);
     }
   }
   ASSERT_FALSE(checked.empty());
-  for (const auto& [force, hertz] : checked) EXPECT_NEAR(force, hertz, 0.15 * hertz);
+  for (const auto& [force, hertz] : checked) EXPECT_NEAR(force, hertz, 0.10 * hertz);
 }
 
 }  // namespace

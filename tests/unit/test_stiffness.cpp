@@ -16,20 +16,9 @@ namespace cubespring {
 namespace {
 
 using test::dense_stiffness;
+using test::finite_difference_stiffness;
 using test::zero_modes;
 
-Eigen::MatrixXd finite_difference_stiffness(const Model& model, const Eigen::Matrix3Xd& x) {
-  const double step = 1e-7;
-  Eigen::MatrixXd k(x.size(), x.size());
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    Eigen::Matrix3Xd plus = x, minus = x;
-    plus.data()[i] += step;
-    minus.data()[i] -= step;
-    const Eigen::Matrix3Xd df = test::elastic_forces(model, plus) - test::elastic_forces(model, minus);
-    k.col(i) = -Eigen::Map<const Eigen::VectorXd>(df.data(), df.size()) / (2 * step);
-  }
-  return k;
-}
 
 // The pattern has a 3x3 block for every node with itself, the two ends of each spring and every
 // two corners of a cell, and nothing else: rows of sorted columns, compressed. An L of 3 cells

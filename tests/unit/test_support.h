@@ -69,4 +69,31 @@ inline int zero_modes(const Model& model) {
   return static_cast<int>((values.array().abs() < 1e-9 * values.maxCoeff()).count());
 }
 
+/// Minus the gradient of the elastic energy by central differences of step 1e-7 m [N].
+inline Eigen::Matrix3Xd finite_difference_forces(const Model& model, const Eigen::Matrix3Xd& x) {
+  const double step = 1e-7;
+  Eigen::Matrix3Xd forces(3, x.cols());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::Matrix3Xd plus = x, minus = x;
+    plus.data()[i] += step;
+    minus.data()[i] -= step;
+    forces.data()[i] = -(elastic_energy(model, plus) - elastic_energy(model, minus)) / (2 * step);
+  }
+  return forces;
+}
+
+/// The stiffness as minus the derivative of the elastic forces, by central differences [N/m].
+inline Eigen::MatrixXd finite_difference_stiffness(const Model& model, const Eigen::Matrix3Xd& x) {
+  const double step = 1e-7;
+  Eigen::MatrixXd k(x.size(), x.size());
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    Eigen::Matrix3Xd plus = x, minus = x;
+    plus.data()[i] += step;
+    minus.data()[i] -= step;
+    const Eigen::Matrix3Xd df = elastic_forces(model, plus) - elastic_forces(model, minus);
+    k.col(i) = -Eigen::Map<const Eigen::VectorXd>(df.data(), df.size()) / (2 * step);
+  }
+  return k;
+}
+
 }  // namespace cubespring::test

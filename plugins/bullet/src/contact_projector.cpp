@@ -11,6 +11,13 @@
 #include "rigid_distance.h"
 
 namespace cubespring::bullet {
+namespace {
+
+// How deep a tool may reach behind a surface triangle, between its corners, for a face contact
+// [cells]: a tip passing between vertices in one sub-step is far shallower.
+constexpr double kFaceContactDepthCells = 0.5;
+
+}  // namespace
 
 void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   const ContactSettings& settings = body_.contact_;
@@ -31,9 +38,11 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     const Eigen::Array3d lower = to_eigen(low).array() - (reach.thickness + reach.offset);
     const Eigen::Array3d upper = to_eigen(high).array() + (reach.thickness + reach.offset);
     touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
+    const std::vector<char> held = vertices_held_by(track.object);
     for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
       if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
+      if (!held.empty() && held[static_cast<std::size_t>(v)]) continue;
       if (uses_normals && normals.cols() == 0) {
         vertex_normals(body_.surface_positions_, body_.surface_triangles_, normals);
       }
@@ -44,6 +53,12 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       touched[static_cast<std::size_t>(v)] = 1;
     }
     body_.update_moved_surface();
+    // a tool that reaches deeper than half a cell behind a triangle is not passing between its
+    // corners: it is inside the tissue, or its shaft pierces the surface, and pushing the
+    // triangle that far along its normal in one sub-step crushed the cells under it (the demo's
+    // probe turned a cell inside out); the vertex contacts hold such a tool
+    ContactReach face_reach = reach;
+    face_reach.thickness = std::min(reach.thickness, kFaceContactDepthCells * body_.model_.cell_size.maxCoeff());
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
     for (Eigen::Index t = 0; body_.contact_.face_contacts && t < body_.surface_triangles_.cols(); ++t) {
@@ -52,19 +67,44 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
           touched[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {
         continue;
       }
+      if (!held.empty() && held[static_cast<std::size_t>(body_.surface_triangles_(0, t))] &&
+          held[static_cast<std::size_t>(body_.surface_triangles_(1, t))] &&
+          held[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {
+        continue;
+      }
       const Eigen::Vector3d a = body_.surface_positions_.col(body_.surface_triangles_(0, t));
       const Eigen::Vector3d b = body_.surface_positions_.col(body_.surface_triangles_(1, t));
       const Eigen::Vector3d c = body_.surface_positions_.col(body_.surface_triangles_(2, t));
       const Eigen::Array3d tri_low = a.cwiseMin(b).cwiseMin(c).array();
       const Eigen::Array3d tri_high = a.cwiseMax(b).cwiseMax(c).array();
       if ((tri_high < lower).any() || (tri_low > upper).any()) continue;
-      const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, reach);
+      const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, face_reach);
       if (!through) continue;
       const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
       apply_face(static_cast<int>(t), through->barycentric, -through->depth * normal, track);
     }
     body_.update_moved_surface();
   }
+}
+
+std::vector<char> ContactProjector::vertices_held_by(const btCollisionObject* object) const {
+  std::vector<char> anchored;  // per node
+  for (const std::optional<Anchor>& anchor : body_.anchors_) {
+    if (!anchor || anchor->body != object) continue;
+    anchored.resize(static_cast<std::size_t>(body_.model_.num_nodes()), 0);
+    for (int node : anchor->nodes) anchored[static_cast<std::size_t>(node)] = 1;
+  }
+  if (anchored.empty()) return {};
+  std::vector<char> held(static_cast<std::size_t>(body_.surface_positions_.cols()), 1);
+  for (std::size_t v = 0; v < held.size(); ++v) {
+    for (int e = body_.surface_offset_[v]; e < body_.surface_offset_[v + 1]; ++e) {
+      if (body_.surface_weight_[static_cast<std::size_t>(e)] != 0.0 &&
+          !anchored[static_cast<std::size_t>(body_.surface_node_[static_cast<std::size_t>(e)])]) {
+        held[v] = 0;
+      }
+    }
+  }
+  return held;
 }
 
 Eigen::Vector3d ContactProjector::apply_vertex(int vertex, const Eigen::Vector3d& push, RigidTrack& track) {

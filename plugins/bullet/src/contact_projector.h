@@ -34,6 +34,11 @@ class ContactProjector {
                              RigidTrack& track);
 
  private:
+  // Per surface vertex, 1 where every node it is embedded in is anchored to `object`: such a
+  // vertex moves with the body that holds it and is not pushed out of it (the anchor's spring
+  // pulled it back in, and the two fought, pumping energy into the tissue). Empty when no anchor
+  // holds the soft body to `object`.
+  std::vector<char> vertices_held_by(const btCollisionObject* object) const;
   void add_vertex(int vertex, double scale);
   Eigen::Vector3d apply(const Eigen::Vector3d& push, RigidTrack& track);
 

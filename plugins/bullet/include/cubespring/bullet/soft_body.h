@@ -48,12 +48,11 @@ struct ContactSettings {
 /// What to build a soft body from.
 struct SoftBodySettings {
   LatticeDesc lattice;  ///< cells, materials, cell model (see cubespring/lattice.h); its `law` is not read
-  /// The cells' large-strain law, which replaces lattice.law. kNeoHookean keeps a 5 kPa organ's
-  /// cells from crushing under its own weight (docs/model-neo-hookean.md); it is not the default
-  /// yet because bodies held by a dynamic anchor or pressed by a projecting tool can go unstable
-  /// with it at the sub-step the springs law takes (issue 24's note). kSprings, the default,
-  /// steps the cell model as calibrated, on the faster grid passes.
-  CellLaw law = CellLaw::kSprings;
+  /// The cells' large-strain law, which replaces lattice.law: neo-Hookean by default, since tissue
+  /// is soft and lives at large strain (a 5 kPa organ under its own weight crushes the springs
+  /// law's cells; docs/model-neo-hookean.md); kSprings steps the cell model as calibrated, on the
+  /// faster grid passes.
+  CellLaw law = CellLaw::kNeoHookean;
   /// The surface the user sees, embedded in the lattice; contact acts on its vertices. Without
   /// one, contact acts on the nodes of the lattice's boundary faces.
   std::optional<TriangleMesh> visual_mesh;
