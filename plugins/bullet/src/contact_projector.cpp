@@ -39,6 +39,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     const Eigen::Array3d upper = to_eigen(high).array() + (reach.thickness + reach.offset);
     touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
     const std::vector<char> held = vertices_held_by(track.object);
+    points_.clear();
     for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
       if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
@@ -49,9 +50,10 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       const std::optional<Eigen::Vector3d> push = penetration_push(
           shape, track.transform, x, uses_normals ? Eigen::Vector3d(normals.col(v)) : Eigen::Vector3d::Zero(), reach);
       if (!push || push->squaredNorm() == 0.0) continue;
-      apply_vertex(v, *push, track);
+      add_vertex_point(v, *push);
       touched[static_cast<std::size_t>(v)] = 1;
     }
+    apply_points(track);
     body_.update_moved_surface();
     // a tool that reaches deeper than half a cell behind a triangle is not passing between its
     // corners: it is inside the tissue, or its shaft pierces the surface, and pushing the
@@ -61,6 +63,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     face_reach.thickness = std::min(reach.thickness, kFaceContactDepthCells * body_.model_.cell_size.maxCoeff());
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
+    points_.clear();
     for (Eigen::Index t = 0; body_.contact_.face_contacts && t < body_.surface_triangles_.cols(); ++t) {
       if (touched[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
           touched[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
@@ -81,8 +84,9 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, face_reach);
       if (!through) continue;
       const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-      apply_face(static_cast<int>(t), through->barycentric, -through->depth * normal, track);
+      add_face_point(static_cast<int>(t), through->barycentric, -through->depth * normal);
     }
+    apply_points(track);
     body_.update_moved_surface();
   }
 }
@@ -107,67 +111,121 @@ std::vector<char> ContactProjector::vertices_held_by(const btCollisionObject* ob
   return held;
 }
 
-Eigen::Vector3d ContactProjector::apply_vertex(int vertex, const Eigen::Vector3d& push, RigidTrack& track) {
-  nodes_.clear();
-  add_vertex(vertex, 1.0);
-  return apply(push, track);
+void ContactProjector::add_vertex_point(int vertex, const Eigen::Vector3d& push) {
+  ContactPoint& point = new_point(push);
+  add_vertex(point, vertex, 1.0);
 }
 
-Eigen::Vector3d ContactProjector::apply_face(int triangle, const Eigen::Vector3d& barycentric,
-                                             const Eigen::Vector3d& push, RigidTrack& track) {
-  nodes_.clear();
-  for (int corner = 0; corner < 3; ++corner) add_vertex(body_.surface_triangles_(corner, triangle), barycentric[corner]);
-  return apply(push, track);
+void ContactProjector::add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push) {
+  ContactPoint& point = new_point(push);
+  for (int corner = 0; corner < 3; ++corner) add_vertex(point, body_.surface_triangles_(corner, triangle), barycentric[corner]);
 }
 
-void ContactProjector::add_vertex(int vertex, double scale) {
+ContactProjector::ContactPoint& ContactProjector::new_point(const Eigen::Vector3d& push) {
+  points_.emplace_back();
+  ContactPoint& point = points_.back();
+  point.push = push;
+  point.first_node = static_cast<int>(point_nodes_.size());
+  return point;
+}
+
+void ContactProjector::add_vertex(ContactPoint& point, int vertex, double scale) {
   for (int e = body_.surface_offset_[static_cast<std::size_t>(vertex)];
        e < body_.surface_offset_[static_cast<std::size_t>(vertex) + 1]; ++e) {
     const int node = body_.surface_node_[static_cast<std::size_t>(e)];
     const double weight = scale * body_.surface_weight_[static_cast<std::size_t>(e)];
-    auto same = std::find_if(nodes_.begin(), nodes_.end(), [node](const auto& entry) { return entry.first == node; });
-    if (same != nodes_.end()) {
+    const auto first = point_nodes_.begin() + point.first_node;
+    auto same = std::find_if(first, point_nodes_.end(), [node](const auto& entry) { return entry.first == node; });
+    if (same != point_nodes_.end()) {
       same->second += weight;
     } else {
-      nodes_.emplace_back(node, weight);
+      point_nodes_.emplace_back(node, weight);
     }
   }
+  point.end_node = static_cast<int>(point_nodes_.size());
 }
 
-Eigen::Vector3d ContactProjector::apply(const Eigen::Vector3d& push, RigidTrack& track) {
-  // the point's inverse mass over the nodes that may move (driven nodes do not)
-  double inverse_mass = 0.0;
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  for (const auto& [node, w] : nodes_) {
-    velocity += w * body_.state_.velocities.col(node);
-    position += w * body_.state_.positions.col(node);
-    if (!body_.constraints_.is_driven(node)) inverse_mass += w * w / body_.model_.mass[node];
+// All points of one pass at once (Jacobi): each point finds the move and the impulse that would
+// take it out of the body and stop its approach (and, within Coulomb's cone, its sliding) on its
+// own, from the state before the pass; a node that several points reach takes the mean of what
+// they give it, weighted by how much it carries of each. Applied one point after another, each
+// point moved its nodes fully although its neighbours had moved them already: a flat face
+// resting on a table was pushed out too far and too fast at every sub-step, which pumped energy
+// into the tissue until it blew up (a 12 cm cube of 5 kPa). A dynamic body's effective mass is
+// shared among the points that touch it (mass splitting), as they all push it at once.
+void ContactProjector::apply_points(RigidTrack& track) {
+  if (points_.empty()) {
+    point_nodes_.clear();
+    return;
   }
-  if (inverse_mass <= 0.0) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d contact = position + push;
-  const Eigen::Vector3d normal = push.normalized();
-  const Eigen::Vector3d relative = velocity - track.velocity_at(contact);
-  const double approach = relative.dot(normal);
-  const double normal_impulse =
-      approach < 0.0 ? -approach / (inverse_mass + track.inverse_mass_along(contact, normal)) : 0.0;
-  Eigen::Vector3d impulse = normal_impulse * normal;
-  const Eigen::Vector3d sliding = relative - approach * normal;
-  const double speed = sliding.norm();
-  if (speed > 0.0) {
-    const Eigen::Vector3d direction = sliding / speed;
-    const double stop = speed / (inverse_mass + track.inverse_mass_along(contact, direction));
-    impulse -= std::min(stop, body_.contact_.friction * normal_impulse) * direction;
+  const auto& mass = body_.model_.mass;
+  const double rigid_share = static_cast<double>(points_.size());
+  if (node_position_.cols() != body_.model_.num_nodes()) {
+    node_position_.setZero(3, body_.model_.num_nodes());
+    node_velocity_.setZero(3, body_.model_.num_nodes());
+    node_weight_.assign(static_cast<std::size_t>(body_.model_.num_nodes()), 0.0);
   }
-  for (const auto& [node, w] : nodes_) {
-    if (body_.constraints_.is_driven(node)) continue;
-    const double share = w / body_.model_.mass[node];
-    body_.state_.positions.col(node) += share / inverse_mass * push;
-    body_.state_.velocities.col(node) += share * impulse;
+  for (ContactPoint& point : points_) {
+    double inverse_mass = 0.0;
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
+    Eigen::Vector3d position = Eigen::Vector3d::Zero();
+    for (int e = point.first_node; e < point.end_node; ++e) {
+      const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
+      velocity += w * body_.state_.velocities.col(node);
+      position += w * body_.state_.positions.col(node);
+      if (!body_.constraints_.is_driven(node)) inverse_mass += w * w / mass[node];
+    }
+    point.inverse_mass = inverse_mass;
+    if (inverse_mass <= 0.0) continue;
+    point.contact = position + point.push;
+    const Eigen::Vector3d normal = point.push.normalized();
+    const Eigen::Vector3d relative = velocity - track.velocity_at(point.contact);
+    const double approach = relative.dot(normal);
+    const double normal_impulse =
+        approach < 0.0 ? -approach / (inverse_mass + rigid_share * track.inverse_mass_along(point.contact, normal)) : 0.0;
+    point.impulse = normal_impulse * normal;
+    const Eigen::Vector3d sliding = relative - approach * normal;
+    const double speed = sliding.norm();
+    if (speed > 0.0) {
+      const Eigen::Vector3d direction = sliding / speed;
+      const double stop = speed / (inverse_mass + rigid_share * track.inverse_mass_along(point.contact, direction));
+      point.impulse -= std::min(stop, body_.contact_.friction * normal_impulse) * direction;
+    }
+    for (int e = point.first_node; e < point.end_node; ++e) {
+      const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
+      if (w <= 0.0 || body_.constraints_.is_driven(node)) continue;
+      double& weight = node_weight_[static_cast<std::size_t>(node)];
+      if (weight == 0.0) moved_nodes_.push_back(node);
+      weight += w;
+    }
+  }
+  // each node's mean correction; what a point delivered is its impulse times the share of it
+  // its nodes took (a node's momentum change from it is share w J), and the rigid body receives
+  // exactly that
+  for (const ContactPoint& point : points_) {
+    if (point.inverse_mass <= 0.0) continue;
+    double delivered = 0.0;
+    for (int e = point.first_node; e < point.end_node; ++e) {
+      const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
+      if (w <= 0.0 || body_.constraints_.is_driven(node)) continue;
+      const double share = w / node_weight_[static_cast<std::size_t>(node)];
+      node_position_.col(node) += share * (w / mass[node]) / point.inverse_mass * point.push;
+      node_velocity_.col(node) += share * (w / mass[node]) * point.impulse;
+      delivered += share * w;
+    }
+    track.receive(-delivered * point.impulse, point.contact);
+  }
+  for (int node : moved_nodes_) {
+    body_.state_.positions.col(node) += node_position_.col(node);
+    body_.state_.velocities.col(node) += node_velocity_.col(node);
+    node_position_.col(node).setZero();
+    node_velocity_.col(node).setZero();
+    node_weight_[static_cast<std::size_t>(node)] = 0.0;
     body_.mark_moved(node);
   }
-  track.receive(-impulse, contact);
-  return impulse;
+  moved_nodes_.clear();
+  points_.clear();
+  point_nodes_.clear();
 }
 
 }  // namespace cubespring::bullet

@@ -14,11 +14,12 @@
 
 namespace cubespring::bullet {
 
-// One contact between a surface point and a rigid body: the point is moved out of the body,
-// which changes no momentum, then the two exchange an inelastic impulse along the normal that
-// stops their approach and, within Coulomb's cone, a tangential one that stops their sliding,
-// both through their effective masses. The rigid track takes the opposite impulse at once, so
-// that the next contact against the same body sees its new velocity.
+// Contacts between a soft body's surface and one rigid body at a time: every surface point inside
+// it is moved out, which changes no momentum, and the two exchange an inelastic impulse along the
+// normal that stops the point's approach and, within Coulomb's cone, a tangential one that stops
+// its sliding, through their effective masses. The points of a pass are resolved together: a
+// node reached by several takes the weighted mean of their corrections (apply_points). The
+// rigid track takes the opposite of what the tissue took.
 class ContactProjector {
  public:
   explicit ContactProjector(SoftBody& body) : body_(body) {}
@@ -27,23 +28,33 @@ class ContactProjector {
   /// triangle a convex tool reaches through between its corners.
   void resolve(std::vector<RigidTrack>& tracks);
 
-  /// A contact at surface vertex v; returns the impulse given to the tissue [N s].
-  Eigen::Vector3d apply_vertex(int vertex, const Eigen::Vector3d& push, RigidTrack& track);
-  /// A contact at a point of a surface triangle, by its barycentric coordinates.
-  Eigen::Vector3d apply_face(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push,
-                             RigidTrack& track);
-
  private:
+  // A contact point as a weighted sum of nodes (point_nodes_[first_node .. end_node)).
+  struct ContactPoint {
+    Eigen::Vector3d push{0, 0, 0};      // the move that takes it out of the rigid body [m]
+    Eigen::Vector3d contact{0, 0, 0};   // where it touches [m]
+    Eigen::Vector3d impulse{0, 0, 0};   // the impulse it would take on its own [N s]
+    double inverse_mass = 0.0;          // [1/kg]
+    int first_node = 0, end_node = 0;
+  };
+
   // Per surface vertex, 1 where every node it is embedded in is anchored to `object`: such a
   // vertex moves with the body that holds it and is not pushed out of it (the anchor's spring
   // pulled it back in, and the two fought, pumping energy into the tissue). Empty when no anchor
   // holds the soft body to `object`.
   std::vector<char> vertices_held_by(const btCollisionObject* object) const;
-  void add_vertex(int vertex, double scale);
-  Eigen::Vector3d apply(const Eigen::Vector3d& push, RigidTrack& track);
+  void add_vertex_point(int vertex, const Eigen::Vector3d& push);
+  void add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push);
+  ContactPoint& new_point(const Eigen::Vector3d& push);
+  void add_vertex(ContactPoint& point, int vertex, double scale);
+  void apply_points(RigidTrack& track);
 
   SoftBody& body_;
-  std::vector<std::pair<int, double>> nodes_;  // the contact point as a weighted sum of nodes
+  std::vector<ContactPoint> points_;               // this pass's contacts
+  std::vector<std::pair<int, double>> point_nodes_;
+  std::vector<double> node_weight_;                // per node: the points' weights on it, summed
+  Eigen::Matrix3Xd node_position_, node_velocity_;  // per node: the points' corrections, weighted
+  std::vector<int> moved_nodes_;                   // the nodes some point reaches
 };
 
 }  // namespace cubespring::bullet
