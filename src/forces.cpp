@@ -528,6 +528,7 @@ void compute_forces(const Model& model, const State& state, const Loads& loads,
   if (error.empty()) error = node_columns_error(model, state.velocities, "state.velocities", !options.damping);
   if (error.empty()) error = node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true);
   if (!error.empty()) throw std::invalid_argument("compute_forces: " + error);
+  require_law_constants(model, "compute_forces");
   const NodeLoads node_loads(model, state, loads, options);
   (void)force_sweep(model, state, options, ws, forces, [&](int n) {
     node_loads.add(n, forces);
@@ -565,6 +566,7 @@ double cell_signed_volume(const Model& model, const Eigen::Matrix3Xd& positions,
 
 double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
   require_node_columns(model, x, "elastic_energy: positions");
+  require_law_constants(model, "elastic_energy");
   double energy = 0.0;
   std::vector<double> length(model.num_springs());
   for (int s = 0; s < model.num_springs(); ++s) {

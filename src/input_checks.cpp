@@ -21,7 +21,20 @@ void require_node_columns(const Model& model, const Eigen::Matrix3Xd& values, co
   if (!error.empty()) throw std::invalid_argument(error);
 }
 
+std::string law_constants_error(const Model& model) {
+  if (model.cell_law != CellLaw::kNeoHookean || model.law_constants.size() == model.materials.size()) return "";
+  return "the model's cell law is neo-hookean but it has " + std::to_string(model.law_constants.size()) +
+         " sets of the law's constants for " + std::to_string(model.materials.size()) +
+         " materials: set LatticeDesc::law and build the model again";
+}
+
+void require_law_constants(const Model& model, const char* caller) {
+  const std::string error = law_constants_error(model);
+  if (!error.empty()) throw std::invalid_argument(std::string(caller) + ": " + error);
+}
+
 std::string state_and_loads_error(const Model& model, const State& state, const Loads& loads) {
+  if (std::string error = law_constants_error(model); !error.empty()) return error;
   for (const std::string& error : {node_columns_error(model, state.positions, "state.positions"),
                                    node_columns_error(model, state.velocities, "state.velocities"),
                                    node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true)}) {

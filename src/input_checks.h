@@ -25,7 +25,14 @@ std::string node_columns_error(const Model& model, const Eigen::Matrix3Xd& value
 void require_node_columns(const Model& model, const Eigen::Matrix3Xd& values, const char* name,
                           bool may_be_empty = false);
 
-/// "" when the state and the loads fit the model and the gravity is finite; else what is wrong.
+/// "" unless the model's cells take the neo-Hookean law without one set of its constants per
+/// material (Model::cell_law set after build_model(), which makes them); else what is wrong.
+std::string law_constants_error(const Model& model);
+/// Throws std::invalid_argument with law_constants_error()'s message, prefixed by `caller`.
+void require_law_constants(const Model& model, const char* caller);
+
+/// "" when the state and the loads fit the model and the gravity is finite (and the model's
+/// law has its constants); else what is wrong.
 std::string state_and_loads_error(const Model& model, const State& state, const Loads& loads);
 
 /// "" when the constraints are empty (Constraints()) or were made for a body of this many

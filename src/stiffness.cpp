@@ -18,6 +18,7 @@
 #include "cubespring/forces.h"
 #include "force_passes.h"
 #include "thread_shares.h"
+#include "input_checks.h"
 #include "neo_hookean_cell.h"
 #include "twist.h"
 
@@ -245,6 +246,7 @@ void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
 void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                     double stiffness_scale, double damping_scale, SparseMatrix& matrix,
                                     int threads) {
+  require_law_constants(model, "StiffnessAssembler");
   // the model's springs are read at every call; the cells' PSD parts are kept, made for each
   // correction the first time it is seen (a changed one, a stiffer region say, too): a compare
   // per cell

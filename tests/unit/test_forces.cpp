@@ -152,10 +152,16 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
   }
   LatticeDesc exact = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
   exact.model = CellModel::kExactBending;
+  LatticeDesc neo_hookean = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
+  neo_hookean.law = CellLaw::kNeoHookean;  // corner forces without a twist
+  LatticeDesc neo_hookean_exact = exact;
+  neo_hookean_exact.law = CellLaw::kNeoHookean;
   const std::vector<std::pair<const char*, LatticeDesc>> bodies{
       {"box", box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), notes_material(0.3))},
       {"exact-bending box", exact},
-      {"ellipsoid", ellipsoid}};
+      {"ellipsoid", ellipsoid},
+      {"neo-hookean box", neo_hookean},
+      {"neo-hookean exact-bending box", neo_hookean_exact}};
   for (const auto& [name, desc] : bodies) {
     for (const bool crushed : {false, true}) {
       Result<Model> built = build_model(desc);
@@ -187,8 +193,10 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
   for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+   for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
     LatticeDesc desc = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
     desc.model = cell_model;
+    desc.law = law;
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     Model blocked = built.value();
@@ -205,7 +213,9 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
     compute_forces(blocked, state, loads, ForceOptions{true, 2}, blocked_ws, by_blocks);
     compute_forces(whole, state, loads, ForceOptions{true, 1}, whole_ws, at_once);
     const double scale = at_once.cwiseAbs().maxCoeff();
-    EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale) << cell_model_name(cell_model);
+    EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale)
+        << cell_model_name(cell_model) << ", " << cell_law_name(law);
+   }
   }
 }
 

@@ -36,7 +36,11 @@ Settled settle_cube(double young_modulus, CellLaw law, double seconds) {
   desc.model = CellModel::kExactBending;
   desc.law = law;
   Result<Model> built = build_model(desc);
-  EXPECT_TRUE(built.ok()) << built.message();
+  Settled result;
+  if (!built.ok()) {
+    ADD_FAILURE() << built.message();
+    return result;
+  }
   const Model& model = built.value();
   Constraints constraints(model);
   EXPECT_TRUE(constraints.fix_box(model, Eigen::Vector3d::Constant(-1), Eigen::Vector3d(1, 1, 1e-6)));
@@ -46,7 +50,6 @@ Settled settle_cube(double young_modulus, CellLaw law, double seconds) {
   settings.time_step = 0.9 * max_stable_time_step(model);
   State state = rest_state(model);
   Stepper stepper(model);
-  Settled result;
   const int steps = static_cast<int>(std::ceil(seconds / settings.time_step));
   for (int s = 0; s < steps; ++s) {
     const StepReport report = stepper.step(model, constraints, loads, settings, state);

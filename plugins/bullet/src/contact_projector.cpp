@@ -70,10 +70,10 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
           touched[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {
         continue;
       }
-      if (!held.empty() && held[static_cast<std::size_t>(body_.surface_triangles_(0, t))] &&
-          held[static_cast<std::size_t>(body_.surface_triangles_(1, t))] &&
-          held[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {
-        continue;
+      if (!held.empty() && (held[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
+                            held[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
+                            held[static_cast<std::size_t>(body_.surface_triangles_(2, t))])) {
+        continue;  // a point of it would move held nodes too
       }
       const Eigen::Vector3d a = body_.surface_positions_.col(body_.surface_triangles_(0, t));
       const Eigen::Vector3d b = body_.surface_positions_.col(body_.surface_triangles_(1, t));
@@ -159,24 +159,34 @@ void ContactProjector::apply_points(RigidTrack& track) {
     return;
   }
   const auto& mass = body_.model_.mass;
-  const double rigid_share = static_cast<double>(points_.size());
+  // the nodes a point moves: those it has a positive weight on, unless driven (a vertex embedded
+  // by extrapolation has negative weights on some; they are left alone)
+  const auto movable = [&](int node, double w) { return w > 0.0 && !body_.constraints_.is_driven(node); };
+  int touching = 0;
+  for (ContactPoint& point : points_) {
+    point.inverse_mass = 0.0;
+    for (int e = point.first_node; e < point.end_node; ++e) {
+      const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
+      if (movable(node, w)) point.inverse_mass += w * w / mass[node];
+    }
+    touching += point.inverse_mass > 0.0;
+  }
+  const double rigid_share = touching;
   if (node_position_.cols() != body_.model_.num_nodes()) {
     node_position_.setZero(3, body_.model_.num_nodes());
     node_velocity_.setZero(3, body_.model_.num_nodes());
     node_weight_.assign(static_cast<std::size_t>(body_.model_.num_nodes()), 0.0);
   }
   for (ContactPoint& point : points_) {
-    double inverse_mass = 0.0;
+    const double inverse_mass = point.inverse_mass;
+    if (inverse_mass <= 0.0) continue;
     Eigen::Vector3d velocity = Eigen::Vector3d::Zero();
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     for (int e = point.first_node; e < point.end_node; ++e) {
       const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
       velocity += w * body_.state_.velocities.col(node);
       position += w * body_.state_.positions.col(node);
-      if (!body_.constraints_.is_driven(node)) inverse_mass += w * w / mass[node];
     }
-    point.inverse_mass = inverse_mass;
-    if (inverse_mass <= 0.0) continue;
     point.contact = position + point.push;
     const Eigen::Vector3d normal = point.push.normalized();
     const Eigen::Vector3d relative = velocity - track.velocity_at(point.contact);
@@ -193,7 +203,7 @@ void ContactProjector::apply_points(RigidTrack& track) {
     }
     for (int e = point.first_node; e < point.end_node; ++e) {
       const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
-      if (w <= 0.0 || body_.constraints_.is_driven(node)) continue;
+      if (!movable(node, w)) continue;
       double& weight = node_weight_[static_cast<std::size_t>(node)];
       if (weight == 0.0) moved_nodes_.push_back(node);
       weight += w;
@@ -207,7 +217,7 @@ void ContactProjector::apply_points(RigidTrack& track) {
     double delivered = 0.0;
     for (int e = point.first_node; e < point.end_node; ++e) {
       const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
-      if (w <= 0.0 || body_.constraints_.is_driven(node)) continue;
+      if (!movable(node, w)) continue;
       const double share = w / node_weight_[static_cast<std::size_t>(node)];
       node_position_.col(node) += share * (w / mass[node]) / point.inverse_mass * point.push;
       node_velocity_.col(node) += share * (w / mass[node]) * point.impulse;
