@@ -18,6 +18,14 @@ inline Eigen::Vector3i corner_offset(int corner) { return {corner & 1, (corner >
 /// side(corner, axis) = +1 when the corner is on the + side of the cell along that axis, else -1.
 inline double corner_side(int corner, int axis) { return (corner >> axis) & 1 ? 1.0 : -1.0; }
 
+/// [v]x, the matrix with [v]x w = v x w (the curvature of a cell's volume, sections 5 of
+/// docs/model-baudet2007.md and 4 of docs/model-neo-hookean.md).
+inline Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
+  Eigen::Matrix3d m;
+  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
+  return m;
+}
+
 /// The three mean edge vectors of a cell: edge[a] = 1/4 sum over the a-edges of (x_+ - x_-).
 struct CellFrame {
   std::array<Eigen::Vector3d, 3> edge;

@@ -57,12 +57,6 @@ Eigen::Vector3d homogeneous_diagonal(const CellFrame& frame, int diagonal) {
          diagonal_sign(diagonal, 2) * frame.edge[2];
 }
 
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
 // d2(1/2 k (|v| - L)^2) / dv dv
 Eigen::Matrix3d spring_hessian(const Eigen::Vector3d& v, double k, double rest) {
   const double length = v.norm();

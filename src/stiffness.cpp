@@ -25,12 +25,6 @@
 namespace cubespring {
 namespace {
 
-Eigen::Matrix3d cross_matrix(const Eigen::Vector3d& v) {
-  Eigen::Matrix3d m;
-  m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
-  return m;
-}
-
 Eigen::Matrix3d positive_part(const Eigen::Matrix3d& m) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(m);
   const Eigen::Vector3d values = solver.eigenvalues().cwiseMax(0.0);
