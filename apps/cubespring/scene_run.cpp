@@ -21,7 +21,7 @@
 namespace cubespring::app {
 
 const char* const kToolForceCsvHeader =
-    "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts";
+    "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,penetration_m";
 
 namespace {
 
@@ -86,7 +86,7 @@ void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<F
     const Eigen::Vector3d torque = w.torque + (pose * tool.shape_offset.translation() - pose.translation()).cross(w.force);
     csv << time << ',' << tool.name << ',' << number(w.force.x()) << ',' << number(w.force.y()) << ','
         << number(w.force.z()) << ',' << number(w.force.norm()) << ',' << number(torque.x()) << ','
-        << number(torque.y()) << ',' << number(torque.z()) << ',' << w.contacts << '\n';
+        << number(torque.y()) << ',' << number(torque.z()) << ',' << w.contacts << ',' << number(w.penetration) << '\n';
     series[i].time.push_back(t);
     series[i].magnitude.push_back(w.force.norm());
   }

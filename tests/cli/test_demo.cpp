@@ -162,11 +162,11 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   std::ifstream csv(out / "tool_forces.csv");
   std::string line;
   ASSERT_TRUE(std::getline(csv, line));
-  EXPECT_EQ(line, "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts");
+  EXPECT_EQ(line, "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,penetration_m");
   std::vector<ForceRow> rows;
   while (std::getline(csv, line)) {
     const std::vector<std::string> fields = split(line);
-    ASSERT_EQ(fields.size(), 10u) << line;
+    ASSERT_EQ(fields.size(), 11u) << line;
     const double fx = std::stod(fields[2]);
     const double fy = std::stod(fields[3]);
     const double fz = std::stod(fields[4]);
@@ -341,7 +341,7 @@ TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
   std::string last;
   while (std::getline(csv, line)) last = line;
   const std::vector<std::string> fields = split(last);
-  ASSERT_EQ(fields.size(), 10u) << last;
+  ASSERT_EQ(fields.size(), 11u) << last;
   EXPECT_EQ(fields[1], "bar");
   const double force_z = std::stod(fields[4]);
   EXPECT_GT(force_z, 0.1) << "the tissue pushes the bar up: " << last;

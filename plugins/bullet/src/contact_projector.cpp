@@ -9,6 +9,7 @@
 #include "conversions.h"
 #include "cubespring/embedding.h"
 #include "rigid_distance.h"
+#include "round_tool_contact.h"
 
 namespace cubespring::bullet {
 namespace {
@@ -16,6 +17,9 @@ namespace {
 // How deep a tool may reach behind a surface triangle, between its corners, for a face contact
 // [cells]: a tip passing between vertices in one sub-step is far shallower.
 constexpr double kFaceContactDepthCells = 0.5;
+
+// How far a round tool's contact points may stay inside it after a sub-step [of its radius].
+constexpr double kRoundToolTolerance = 1e-4;
 
 }  // namespace
 
@@ -55,6 +59,13 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     }
     apply_points(track);
     body_.update_moved_surface();
+    // a round tool (a probe's sphere or capsule) meets the surface where its core is nearest it,
+    // between vertices as well as at them, and the tissue's own outward normal there says which
+    // way is out: so a tip smaller than the triangles cannot pass between them or slip under them
+    if (const std::optional<RoundCore> core = round_core(shape, track.transform)) {
+      resolve_round_tool(track, *core, held);
+      continue;
+    }
     // a tool that reaches deeper than half a cell behind a triangle is not passing between its
     // corners: it is inside the tissue, or its shaft pierces the surface, and pushing the
     // triangle that far along its normal in one sub-step crushed the cells under it (the demo's
@@ -89,6 +100,82 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     apply_points(track);
     body_.update_moved_surface();
   }
+}
+
+void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& core, const std::vector<char>& held) {
+  const double cell = body_.model_.cell_size.maxCoeff();
+  const double reach = core.radius + body_.contact_.offset;
+  const std::vector<int> near = outer_triangles_near(core, body_.surface_positions_, body_.surface_triangles_,
+                                                     *body_.surface_topology_, reach + cell);
+  // the points of a pass share nodes (a tool thinner than a cell touches the surface within one
+  // cell from several sides), so one pass takes each only part of the way: passes are repeated,
+  // each from where the last left the surface, until every point is within kTolerance of the tool
+  constexpr int kMaxPasses = 8;
+  const double tolerance = kRoundToolTolerance * core.radius;
+  double budget = kFaceContactDepthCells * cell;
+  for (int pass = 0; pass < kMaxPasses && budget > 0.0; ++pass) {
+    points_.clear();
+    double deepest = 0.0;
+    for (const CoreContact& contact : core_contacts(core, body_.surface_positions_, body_.surface_triangles_,
+                                                    *body_.surface_topology_, near, reach)) {
+      // a point the vertex pass left on the tool's surface, a rounding error inside, is not
+      // resolved again: it would dilute the others' corrections in apply_points()
+      const double gap = contact.signed_distance - reach;
+      if (gap >= -tolerance) continue;
+      const int t = contact.surface.triangle;
+      if (!held.empty() && (held[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
+                            held[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
+                            held[static_cast<std::size_t>(body_.surface_triangles_(2, t))])) {
+        continue;
+      }
+      // a core found deep inside (a tool placed in the tissue) comes out over several sub-steps:
+      // pushing the surface a cell in one crushed the cells under it
+      add_face_point(t, contact.surface.barycentric, -std::min(-gap, budget) * contact.normal);
+      deepest = std::max(deepest, -gap);
+    }
+    // the first pass stops the approach of every touching point (a body resting on the tissue
+    // needs that at every sub-step); later ones only finish the projection
+    if (points_.empty() || (pass > 0 && deepest <= tolerance)) {
+      points_.clear();
+      point_nodes_.clear();
+      break;
+    }
+    budget -= deepest;
+    apply_points(track, pass == 0);
+    body_.update_moved_surface();
+  }
+}
+
+double ContactProjector::penetration(const SoftBody& body, const RigidTrack& track) {
+  const btCollisionShape& shape = *track.object->getCollisionShape();
+  const double cell = body.model_.cell_size.maxCoeff();
+  if (const std::optional<RoundCore> core = round_core(shape, track.transform)) {
+    const std::vector<int> near = outer_triangles_near(*core, body.surface_positions_, body.surface_triangles_,
+                                                       *body.surface_topology_, core->radius + cell);
+    double deepest = 0.0;
+    for (const CoreContact& contact : core_contacts(*core, body.surface_positions_, body.surface_triangles_,
+                                                    *body.surface_topology_, near, core->radius)) {
+      deepest = std::max(deepest, core->radius - contact.signed_distance);
+    }
+    return deepest;
+  }
+  ContactReach reach;
+  reach.thickness = body.contact_.max_depth > 0.0 ? body.contact_.max_depth : 2.0 * cell;
+  btVector3 low;
+  btVector3 high;
+  shape.getAabb(track.transform, low, high);
+  const Eigen::Array3d lower = to_eigen(low).array() - reach.thickness;
+  const Eigen::Array3d upper = to_eigen(high).array() + reach.thickness;
+  double deepest = 0.0;
+  for (int v = 0; v < body.surface_positions_.cols(); ++v) {
+    const Eigen::Vector3d x = body.surface_positions_.col(v);
+    if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
+    if (const std::optional<Eigen::Vector3d> push =
+            penetration_push(shape, track.transform, x, Eigen::Vector3d::Zero(), reach)) {
+      deepest = std::max(deepest, push->norm());
+    }
+  }
+  return deepest;
 }
 
 std::vector<char> ContactProjector::vertices_held_by(const btCollisionObject* object) const {
@@ -153,7 +240,7 @@ void ContactProjector::add_vertex(ContactPoint& point, int vertex, double scale)
 // resting on a table was pushed out too far and too fast at every sub-step, which pumped energy
 // into the tissue until it blew up (a 12 cm cube of 5 kPa). A dynamic body's effective mass is
 // shared among the points that touch it (mass splitting), as they all push it at once.
-void ContactProjector::apply_points(RigidTrack& track) {
+void ContactProjector::apply_points(RigidTrack& track, bool count) {
   if (points_.empty()) {
     point_nodes_.clear();
     return;
@@ -223,7 +310,7 @@ void ContactProjector::apply_points(RigidTrack& track) {
       node_velocity_.col(node) += share * (w / mass[node]) * point.impulse;
       delivered += share * w;
     }
-    track.receive(-delivered * point.impulse, point.contact);
+    track.receive(-delivered * point.impulse, point.contact, count);
   }
   for (int node : moved_nodes_) {
     body_.state_.positions.col(node) += node_position_.col(node);

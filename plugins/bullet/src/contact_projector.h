@@ -11,6 +11,7 @@
 
 #include "cubespring/bullet/soft_body.h"
 #include "rigid_track.h"
+#include "round_tool_contact.h"
 
 namespace cubespring::bullet {
 
@@ -28,6 +29,9 @@ class ContactProjector {
   /// triangle a convex tool reaches through between its corners.
   void resolve(std::vector<RigidTrack>& tracks);
 
+  /// How deep the body's surface reaches into the track's shape [m] (ContactWrench::penetration).
+  static double penetration(const SoftBody& body, const RigidTrack& track);
+
  private:
   // A contact point as a weighted sum of nodes (point_nodes_[first_node .. end_node)).
   struct ContactPoint {
@@ -43,11 +47,15 @@ class ContactProjector {
   // pulled it back in, and the two fought, pumping energy into the tissue). Empty when no anchor
   // holds the soft body to `object`.
   std::vector<char> vertices_held_by(const btCollisionObject* object) const;
+  // The one point where a round tool's core is nearest the surface (or deepest inside it) is
+  // pushed to the tool's surface along the tissue's normal there.
+  void resolve_round_tool(RigidTrack& track, const RoundCore& core, const std::vector<char>& held);
   void add_vertex_point(int vertex, const Eigen::Vector3d& push);
   void add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push);
   ContactPoint& new_point(const Eigen::Vector3d& push);
   void add_vertex(ContactPoint& point, int vertex, double scale);
-  void apply_points(RigidTrack& track);
+  // count: whether the points count as contacts of the sub-step (RigidTrack::substep_contacts)
+  void apply_points(RigidTrack& track, bool count = true);
 
   SoftBody& body_;
   std::vector<ContactPoint> points_;               // this pass's contacts

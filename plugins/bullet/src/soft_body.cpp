@@ -12,6 +12,7 @@
 
 #include "contact_surface.h"
 #include "conversions.h"
+#include "surface_topology.h"
 
 namespace cubespring::bullet {
 
@@ -69,6 +70,8 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->surface_triangles_ = std::move(surface.triangles);
   body->index_vertices_by_node();
   body->update_surface();
+  body->surface_topology_ =
+      std::make_shared<const SurfaceTopology>(surface_topology(body->surface_positions_, body->surface_triangles_));
   return body;
 }
 

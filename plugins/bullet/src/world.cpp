@@ -78,6 +78,7 @@ ContactWrench World::getContactWrench(const btCollisionObject* object) const {
     total.torque += wrench.torque;
     total.contacts += wrench.contacts;
     total.time = std::max(total.time, wrench.time);
+    total.penetration = std::max(total.penetration, wrench.penetration);
   }
   return total;
 }
@@ -235,6 +236,12 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     }
   }
   body.loads_.nodal_forces = user_forces;
+  if (body.last_report_.ok()) {
+    const std::lock_guard<std::mutex> lock(wrench_mutex_);
+    for (const RigidTrack& track : tracks) {
+      wrenches_[track.object][&body].penetration = ContactProjector::penetration(body, track);
+    }
+  }
 
   // hand the dynamic bodies the tissue's impulses (and the motion they had in the sub-steps)
   for (RigidTrack& track : tracks) hand_over(track, step_length);

@@ -74,6 +74,8 @@ struct Anchor {
 
 /// A calibrated cube lattice that lives in a cubespring::bullet::World. Its state can be read and
 /// changed between world steps like any cubespring body's.
+struct SurfaceTopology;
+
 class SoftBody {
  public:
   static Result<std::unique_ptr<SoftBody>> create(const SoftBodySettings& settings);
@@ -162,6 +164,8 @@ class SoftBody {
   std::vector<char> node_moved_;
   std::vector<int> stale_vertices_;
   std::vector<char> vertex_stale_;
+  // which triangles neighbour which, and which bound the tissue from outside (round tools' contact)
+  std::shared_ptr<const SurfaceTopology> surface_topology_;
   Embedding embedding_;
 
   std::vector<std::optional<Anchor>> anchors_;

@@ -23,6 +23,10 @@ struct ContactWrench {
   Eigen::Vector3d torque{0, 0, 0};  ///< about the body's centre of mass, world frame [N m]
   int contacts = 0;                 ///< contact-surface vertices pushed out of it in the last sub-step
   double time = 0.0;                ///< simulated time at the end of that sub-step [s]
+  /// How deep the soft bodies' contact surface reaches into it at the end of the last step [m]:
+  /// for spheres and capsules anywhere on the surface's triangles (the distance from the tool's
+  /// core, a centre or an axis, short of its radius), for other shapes at the surface's vertices.
+  double penetration = 0.0;
 };
 
 /// A Bullet dynamics world that also steps cubespring soft bodies: rigid bodies, constraints, ray
