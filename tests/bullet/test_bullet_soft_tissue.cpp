@@ -6,7 +6,10 @@
 // static plane, for 3 s at Bullet's 1/60 s steps. It must settle: no blow-up, no crushed cell,
 // its volume kept, the ground carrying its weight. (Label slow: seconds in a release build.)
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -117,6 +120,95 @@ TEST(SoftTissue, CubeOnTheGroundSettlesKeepingItsVolume) {
     EXPECT_NEAR(ground, weight, 0.05 * weight);
     EXPECT_GT(top, 0.1) << "it stands: the sag of a uniaxial column, rho g H^2 / (2 E), is 15 mm at 5 kPa";
   }
+}
+
+// Where a ray from `from` along `direction` first meets the body's surface [m], if within `length`.
+double surface_distance_along(const bullet::SoftBody& soft, const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
+                              double length) {
+  const std::optional<bullet::SoftBody::RayHit> hit = soft.ray_test(from, from + length * direction.normalized());
+  return hit ? hit->fraction * length : std::numeric_limits<double>::infinity();
+}
+
+// A 5 mm probe (a kinematic capsule of 2.5 mm radius) pressed 1 cm into a 9.6 cm cube of 5 kPa
+// tissue, base bonded, and dragged 4 cm across it at 2 cm/s, friction 0.3, at Bullet's 1/60 s
+// steps. The surface's triangles (8 mm squares cut in two) are wider than the probe, so its
+// vertices alone could not hold it: until round tools met the whole surface it slipped between
+// them and under the surface, and its force fell to nothing. The tissue's surface must stay
+// outside the probe, within 0.5 mm (the contact issue's target), seen by rays cast from the
+// probe's core (the plugin's picking, not its contact code), and the force must never fall
+// below half its value a step before.
+TEST(SoftTissue, AProbeThinnerThanTheSurfaceTrianglesNeverSlipsInside) {
+  test::BulletScene scene;
+  btRigidBody* floor = scene.add_floor();
+  Material tissue;
+  tissue.young_modulus = 5e3;
+  tissue.poisson_ratio = 0.45;
+  tissue.density = 1060;
+  tissue.mass_damping = 40;
+  const double h = 0.008;
+  bullet::SoftBodySettings settings = test::block({12, 12, 12}, h, tissue);
+  settings.lattice.model = CellModel::kExactBending;
+  settings.visual_mesh = box_surface(0.048, 12);
+  settings.contact.friction = 0.3;
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  ASSERT_NE(soft, nullptr);
+  ASSERT_TRUE(soft->anchor_box(floor, Eigen::Vector3d(-1, -1, -1e-6), Eigen::Vector3d(1, 1, 1e-6)).ok());
+  scene.run(0.5);  // settles under its own weight first
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+
+  const double radius = 0.0025, length = 0.1;
+  const double top = soft->state().positions(2, soft->model().node_at({6, 6, 12}));
+  // the tip's centre (a radius above the tip) over time: press, hold, drag; off the grid's lines
+  const auto tip_centre = [&](double t) {
+    const double depth = std::min(t / 0.5, 1.0) * 0.01;
+    const double along = std::clamp((t - 0.75) * 0.02, 0.0, 0.04);
+    return Eigen::Vector3d(-0.02 + along, 0.0013, top + radius - depth);
+  };
+  // it starts where it touches: the world meets rigid bodies that start a step near the tissue
+  const Eigen::Vector3d start = tip_centre(0.0);
+  btRigidBody* probe = scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(radius),
+                                                           static_cast<btScalar>(length - 2 * radius)),
+                                       0.0, test::at(start.x(), start.y(), start.z() + 0.5 * length - radius), true);
+  const double step = 1.0 / 60.0;
+  const double allowed = std::max(0.5e-3, 0.1 * radius);
+  std::vector<Eigen::Vector3d> directions;
+  for (int i = -1; i <= 1; ++i) {
+    for (int j = -1; j <= 1; ++j) {
+      for (int k = -1; k <= 1; ++k) {
+        if (i != 0 || j != 0 || k != 0) directions.push_back(Eigen::Vector3d(i, j, k).normalized());
+      }
+    }
+  }
+  double deepest = 0.0, deepest_reported = 0.0, previous_force = 0.0, least_drag_force = 1e300;
+  int drops = 0;
+  for (int n = 1; n <= static_cast<int>(std::lround(2.75 / step)); ++n) {
+    const double t = n * step;
+    const Eigen::Vector3d centre = tip_centre(t);
+    probe->setWorldTransform(test::at(centre.x(), centre.y(), centre.z() + 0.5 * length - radius));
+    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
+    ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << "t = " << t << ": " << scene.world().getSoftBodyError();
+    // the surface's distance from the core, at the tip's centre and 1 cm up the shaft
+    for (const Eigen::Vector3d& d : directions) {
+      deepest = std::max(deepest, radius - surface_distance_along(*soft, centre, d, 2 * radius));
+      if (d.z() == 0.0) {
+        deepest = std::max(deepest, radius - surface_distance_along(*soft, centre + Eigen::Vector3d(0, 0, 0.01), d, 2 * radius));
+      }
+    }
+    const bullet::ContactWrench wrench = scene.world().getContactWrench(probe);
+    deepest_reported = std::max(deepest_reported, wrench.penetration);
+    const double force = wrench.force.norm();
+    if (t > 0.3 && force < 0.5 * previous_force) ++drops;
+    if (t > 0.75) least_drag_force = std::min(least_drag_force, force);
+    previous_force = force;
+  }
+  std::printf("probe: the surface reaches %.3f mm into it at most (the plugin reports %.3f mm); %d steps lost half "
+              "the force; the drag's least force %.3f N, last %.3f N\n",
+              1e3 * deepest, 1e3 * deepest_reported, drops, least_drag_force, previous_force);
+  EXPECT_LT(deepest, allowed);
+  EXPECT_LT(deepest_reported, allowed);
+  EXPECT_NEAR(deepest_reported, deepest, 0.2e-3) << "the reported penetration is the one the rays see";
+  EXPECT_EQ(drops, 0);
+  EXPECT_GT(least_drag_force, 0.1) << "pressed 1 cm into 5 kPa tissue, the probe always feels it";
 }
 
 }  // namespace
