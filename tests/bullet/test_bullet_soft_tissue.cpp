@@ -68,6 +68,21 @@ TriangleMesh box_surface(double a, int n) {
   return mesh;
 }
 
+// A cube of tissue (nu = 0.45, density 1060, mass damping 40/s) of `cells` exact-bending cells of
+// 8 mm across, base at z = 0, its visual surface the cube's faces cut into `squares` x `squares`.
+bullet::SoftBodySettings tissue_cube(double young_modulus, int cells, int squares) {
+  Material tissue;
+  tissue.young_modulus = young_modulus;
+  tissue.poisson_ratio = 0.45;
+  tissue.density = 1060;
+  tissue.mass_damping = 40;
+  const double h = 0.008;
+  bullet::SoftBodySettings settings = test::block(Eigen::Vector3i::Constant(cells), h, tissue);
+  settings.lattice.model = CellModel::kExactBending;
+  settings.visual_mesh = box_surface(0.5 * cells * h, squares);
+  return settings;
+}
+
 TEST(SoftTissue, BoxSurfaceIsClosedAndOutward) {
   const TriangleMesh mesh = box_surface(0.06, 6);
   EXPECT_EQ(mesh.num_vertices(), 6 * 6 * 6 + 2);  // (n+1)^3 - (n-1)^3
@@ -85,16 +100,7 @@ TEST(SoftTissue, CubeOnTheGroundSettlesKeepingItsVolume) {
   for (double young_modulus : {5e3, 1e4}) {
     test::BulletScene scene;
     btRigidBody* floor = scene.add_floor();
-    Material tissue;
-    tissue.young_modulus = young_modulus;
-    tissue.poisson_ratio = 0.45;
-    tissue.density = 1060;
-    tissue.mass_damping = 40;
-    const double h = 0.008;
-    bullet::SoftBodySettings settings = test::block({15, 15, 15}, h, tissue);
-    settings.lattice.model = CellModel::kExactBending;
-    settings.visual_mesh = box_surface(0.06, 30);
-    bullet::SoftBody* soft = scene.add_soft(settings);
+    bullet::SoftBody* soft = scene.add_soft(tissue_cube(young_modulus, 15, 30));
     ASSERT_NE(soft, nullptr);
     ASSERT_EQ(soft->model().cell_law, CellLaw::kNeoHookean) << "the plugin's default";
     scene.run(3.0);
@@ -140,15 +146,7 @@ double surface_distance_along(const bullet::SoftBody& soft, const Eigen::Vector3
 TEST(SoftTissue, AProbeThinnerThanTheSurfaceTrianglesNeverSlipsInside) {
   test::BulletScene scene;
   btRigidBody* floor = scene.add_floor();
-  Material tissue;
-  tissue.young_modulus = 5e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060;
-  tissue.mass_damping = 40;
-  const double h = 0.008;
-  bullet::SoftBodySettings settings = test::block({12, 12, 12}, h, tissue);
-  settings.lattice.model = CellModel::kExactBending;
-  settings.visual_mesh = box_surface(0.048, 12);
+  bullet::SoftBodySettings settings = tissue_cube(5e3, 12, 12);
   settings.contact.friction = 0.3;
   bullet::SoftBody* soft = scene.add_soft(settings);
   ASSERT_NE(soft, nullptr);
