@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "conjugate_gradient.h"
 #include "drive_nodes.h"
@@ -85,8 +86,37 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
   return explicit_step(model, constraints, loads, settings, state);
 }
 
+namespace {
+
+// Where a blow-up shows, for the message: the fastest node after the step, where it was at the
+// step's start, and the cell most compressed then (a cell crushed far below its rest volume is far
+// stiffer than at rest, so a step stable at rest need not be stable there).
+std::string where_it_failed(const Model& model, const State& candidate, const State& start) {
+  Eigen::Index node = 0;
+  candidate.velocities.colwise().squaredNorm().maxCoeff(&node);
+  std::ostringstream out;
+  out << ", node " << node << " (at (" << start.positions.col(node).transpose() << ") m when the step began)";
+  double least = std::numeric_limits<double>::infinity();
+  int crushed = -1;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const double ratio = cell_signed_volume(model, start.positions, c) / model.rest_cell_volume();
+    if (ratio < least) {
+      least = ratio;
+      crushed = c;
+    }
+  }
+  if (crushed >= 0 && least < 0.5) {
+    out << "; cell " << crushed << " is crushed to " << least
+        << " of its rest volume, where the tissue is far stiffer than the step was chosen for (a tool or a"
+           " contact pressing it, or a step too long)";
+  }
+  return out.str();
+}
+
+}  // namespace
+
 StepReport Stepper::check(const Model& model, const StepSettings& settings, double fastest,
-                          const State& candidate, bool positions_checked) const {
+                          const State& candidate, const State& start, bool positions_checked) const {
   const double limit = settings.speed_limit > 0.0 ? settings.speed_limit : 10.0 * max_wave_speed(model);
   // x - x is 0 for a finite x and NaN otherwise; its sum is a vectorised allFinite()
   const bool finite = std::isfinite(fastest) &&
@@ -97,6 +127,7 @@ StepReport Stepper::check(const Model& model, const StepSettings& settings, doub
     message << "positions or velocities became NaN or infinite";
   } else {
     message << "a node moves at " << fastest << " m/s, above the limit of " << limit << " m/s: the step is unstable";
+    message << where_it_failed(model, candidate, start);
   }
   // the likely cause, not the body's limit itself: finding that assembles the stiffness (seconds
   // and gigabytes for a large body) at the moment the caller learns of the blow-up
@@ -145,7 +176,7 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
   candidate_.time = state.time + dt;
   // the kick checked the positions it made (driven nodes' targets are finite); a serial sweep
   // here would also pull every position into this thread's cache
-  StepReport report = check(model, settings, std::sqrt(fastest_sq), candidate_, true);
+  StepReport report = check(model, settings, std::sqrt(fastest_sq), candidate_, state, true);
   if (report.ok()) std::swap(state, candidate_);
   return report;
 }
@@ -240,7 +271,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   (void)drive_nodes(constraints, dt, state, candidate_, 0, constraints.num_nodes());
   candidate_.time = state.time + dt;
   const double fastest = std::sqrt(candidate_.velocities.colwise().squaredNorm().maxCoeff());
-  StepReport checked = check(model, settings, fastest, candidate_);
+  StepReport checked = check(model, settings, fastest, candidate_, state);
   if (!checked.ok()) return checked;
   std::swap(state, candidate_);
   return report;

@@ -81,9 +81,9 @@ class Stepper {
   StepReport implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                            const StepSettings& settings, State& state);
   /// `fastest` [m/s] is NaN or infinite when a velocity, or (positions_checked) a position, is not
-  /// finite.
+  /// finite; a failure's message says where it shows in the step's `start` state.
   StepReport check(const Model& model, const StepSettings& settings, double fastest, const State& candidate,
-                   bool positions_checked = false) const;
+                   const State& start, bool positions_checked = false) const;
 
   ForceWorkspace workspace_;
   Eigen::Matrix3Xd forces_;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -209,6 +210,29 @@ TEST(Integrator, ADrivenNodeWithAnInfiniteSpeedIsReported) {
         EXPECT_TRUE(state == before) << what;
       }
     }
+  }
+}
+
+// A blow-up's message says where it shows: the fastest node, where it stood when the step began,
+// and a cell crushed below half its rest volume then (far stiffer than at rest).
+TEST(Integrator, AnUnstableStepNamesItsFastestNodeAndACrushedCell) {
+  const Model model = test::box_model({6, 4, 3}, test::notes_material(0.3));
+  for (const bool crushed : {false, true}) {
+    State state = rest_state(model);
+    state.velocities.col(5) = Eigen::Vector3d(1e4, 0, 0);  // far above any wave speed
+    if (crushed) {  // the last cell's top face pushed through its bottom
+      for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes.back()[corner]) -= 0.015;
+    }
+    StepSettings settings;
+    settings.time_step = 1e-4;
+    Stepper stepper(model);
+    const StepReport report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+    ASSERT_EQ(report.status, StepStatus::kUnstable);
+    std::ostringstream node;
+    node << "node 5 (at (" << model.rest_positions.col(5).transpose() << ") m when the step began)";
+    EXPECT_NE(report.message.find(node.str()), std::string::npos) << report.message;
+    const std::string cell = "cell " + std::to_string(model.num_cells() - 1) + " is crushed to -";
+    EXPECT_EQ(report.message.find(cell) != std::string::npos, crushed) << report.message;
   }
 }
 
