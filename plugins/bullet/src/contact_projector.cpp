@@ -43,6 +43,13 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     const Eigen::Array3d upper = to_eigen(high).array() + (reach.thickness + reach.offset);
     touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
     const std::vector<char> held = vertices_held_by(track.object);
+    // a round tool meets the whole surface, its corners included (resolve_round_tool): pushing
+    // the vertices first, each to the nearest way out of the tool, fought that
+    const std::optional<RoundCore> core = round_core(shape, track.transform);
+    if (core) {
+      resolve_round_tool(track, *core, held);
+      continue;
+    }
     points_.clear();
     for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
@@ -59,13 +66,6 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     }
     apply_points(track);
     body_.update_moved_surface();
-    // a round tool (a probe's sphere or capsule) meets the surface where its core is nearest it,
-    // between vertices as well as at them, and the tissue's own outward normal there says which
-    // way is out: so a tip smaller than the triangles cannot pass between them or slip under them
-    if (const std::optional<RoundCore> core = round_core(shape, track.transform)) {
-      resolve_round_tool(track, *core, held);
-      continue;
-    }
     // a tool that reaches deeper than half a cell behind a triangle is not passing between its
     // corners: it is inside the tissue, or its shaft pierces the surface, and pushing the
     // triangle that far along its normal in one sub-step crushed the cells under it (the demo's
