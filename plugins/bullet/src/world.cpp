@@ -64,6 +64,7 @@ const std::string& World::getSoftBodyError() const {
 
 void World::removeSoftBody(SoftBody* body) {
   soft_bodies_.erase(std::remove(soft_bodies_.begin(), soft_bodies_.end(), body), soft_bodies_.end());
+  projectors_.erase(body);
   const std::lock_guard<std::mutex> lock(wrench_mutex_);
   for (auto& [object, by_body] : wrenches_) by_body.erase(body);
 }
@@ -199,6 +200,9 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   const Eigen::Matrix3Xd user_forces = body.loads_.nodal_forces;
   body.step_settings_.time_step = dt;
   const bool held_anchors = has_held_anchors(body, tracks, anchor_track);
+  std::unique_ptr<ContactProjector>& kept = projectors_[&body];
+  if (!kept) kept = std::make_unique<ContactProjector>(body);
+  ContactProjector& projector = *kept;
   Eigen::Matrix3Xd velocities_before;
   for (int k = 0; k < substeps; ++k) {
     for (RigidTrack& track : tracks) {
@@ -221,7 +225,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     body.update_surface();
 
     // contacts: every surface vertex inside a nearby rigid shape is moved out
-    ContactProjector(body).resolve(tracks);
+    projector.resolve(tracks);
     for (RigidTrack& track : tracks) finish_substep(track);
 
     // the mean over the step so far: a single sub-step's impulse flickers as vertices touch and

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <string>
@@ -34,6 +35,8 @@ struct ContactWrench {
 /// every soft body over the step in sub-steps, against the rigid bodies that Bullet's broadphase
 /// finds near it (dynamic ones integrated alongside, so contacts stay stable), then gives those
 /// bodies the contact impulses and runs Bullet's own step. Method names follow Bullet's.
+class ContactProjector;
+
 class World : public btDiscreteDynamicsWorld {
  public:
   World(btDispatcher* dispatcher, btBroadphaseInterface* broadphase, btConstraintSolver* solver,
@@ -75,6 +78,8 @@ class World : public btDiscreteDynamicsWorld {
   // per rigid object, what each soft body did to it; read summed
   std::map<const btCollisionObject*, std::map<const SoftBody*, ContactWrench>> wrenches_;
   std::set<const btCollisionObject*> constrained_;  // bodies a joint holds, this step
+  // each soft body's contact resolution, kept from sub-step to sub-step with its per-node buffers
+  std::map<const SoftBody*, std::unique_ptr<ContactProjector>> projectors_;
   double time_ = 0.0;
   // the current stepSimulation() call: its length, and how much of it the internal steps took
   double kinematic_span_ = 0.0;
