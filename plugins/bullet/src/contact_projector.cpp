@@ -109,7 +109,7 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
                                                      *body_.surface_topology_, reach + cell);
   // the points of a pass share nodes (a tool thinner than a cell touches the surface within one
   // cell from several sides), so one pass takes each only part of the way: passes are repeated,
-  // each from where the last left the surface, until every point is within kTolerance of the tool
+  // each from where the last left the surface, until every point is within the tolerance
   constexpr int kMaxPasses = 8;
   const double tolerance = kRoundToolTolerance * core.radius;
   double budget = kFaceContactDepthCells * cell;
@@ -118,8 +118,8 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
     double deepest = 0.0;
     for (const CoreContact& contact : core_contacts(core, body_.surface_positions_, body_.surface_triangles_,
                                                     *body_.surface_topology_, near, reach)) {
-      // a point the vertex pass left on the tool's surface, a rounding error inside, is not
-      // resolved again: it would dilute the others' corrections in apply_points()
+      // a point an earlier pass or sub-step left on the tool's surface, a rounding error inside,
+      // is not resolved again: it would dilute the others' corrections in apply_points()
       const double gap = contact.signed_distance - reach;
       if (gap >= -tolerance) continue;
       const int t = contact.surface.triangle;
@@ -133,15 +133,9 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
       add_face_point(t, contact.surface.barycentric, -std::min(-gap, budget) * contact.normal);
       deepest = std::max(deepest, -gap);
     }
-    // the first pass stops the approach of every touching point (a body resting on the tissue
-    // needs that at every sub-step); later ones only finish the projection
-    if (points_.empty() || (pass > 0 && deepest <= tolerance)) {
-      points_.clear();
-      point_nodes_.clear();
-      break;
-    }
+    if (points_.empty()) break;
     budget -= deepest;
-    apply_points(track, pass == 0);
+    apply_points(track, pass == 0);  // a point counts as a contact once
     body_.update_moved_surface();
   }
 }
