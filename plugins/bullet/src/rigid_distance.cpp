@@ -14,6 +14,7 @@
 
 #include "conversions.h"
 #include "hull_planes.h"
+#include "surface_distance.h"
 
 namespace cubespring::bullet {
 
@@ -172,28 +173,6 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
   return Eigen::Vector3d(to_eigen(transform.getBasis() * to_bt(*push)));
 }
 
-Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                          const Eigen::Vector3d& c) {
-  // Voronoi regions of the vertices, edges and face (Ericson, Real-Time Collision Detection 5.1.5)
-  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Eigen::Vector3d bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Eigen::Vector3d cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double denominator = 1.0 / (va + vb + vc);
-  return a + ab * (vb * denominator) + ac * (vc * denominator);
-}
-
 // The nearest triangle of a concave mesh around a point, in the mesh's own frame.
 class NearestTriangle : public btTriangleCallback {
  public:
@@ -202,7 +181,8 @@ class NearestTriangle : public btTriangleCallback {
     const Eigen::Vector3d a = to_eigen(corners[0]), b = to_eigen(corners[1]), c = to_eigen(corners[2]);
     const Eigen::Vector3d normal = (b - a).cross(c - a);
     if (normal.squaredNorm() == 0.0) return;
-    const Eigen::Vector3d closest = closest_point_on_triangle(point_, a, b, c);
+    const Eigen::Vector3d w = closest_barycentric(point_, a, b, c);
+    const Eigen::Vector3d closest = w[0] * a + w[1] * b + w[2] * c;
     const double distance = (closest - point_).squaredNorm();
     if (distance >= best_distance_) return;
     best_distance_ = distance;
