@@ -31,10 +31,11 @@ namespace cubespring::bullet {
 struct ContactSettings {
   double friction = 0.5;  ///< Coulomb coefficient mu [-], >= 0: the tangential impulse is at most mu
                           ///< times the normal one
-  /// Also test convex tools against the inside of surface triangles whose corners they miss, so
-  /// that a tip thinner than a cell cannot pass between vertices. Off by default: on an
-  /// asymmetric triangulation it pushes round bodies resting in a dimple sideways, and they roll
-  /// (docs/bullet-plugin.md section 5).
+  /// Also test convex tools other than spheres and capsules against the inside of surface
+  /// triangles whose corners they miss, so that a tip thinner than a cell cannot pass between
+  /// vertices. Spheres and capsules meet the whole surface whatever this says (docs/bullet-plugin.md
+  /// section 2.6). Off by default: on an asymmetric triangulation it pushed round bodies resting
+  /// in a dimple sideways, and they rolled (docs/bullet-plugin.md section 5).
   bool face_contacts = false;
   /// Contact is a projection, not a penalty spring: it has no stiffness to tune, at any scale.
   /// Its one length is this skin [m], >= 0: the tissue is kept this far outside every rigid
