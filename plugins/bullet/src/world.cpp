@@ -224,7 +224,8 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     if (held_anchors) report_held_anchors(body, tracks, anchor_track, velocities_before, dt);
     body.update_surface();
 
-    // contacts: every surface vertex inside a nearby rigid shape is moved out
+    // contacts: the surface is moved out of every nearby rigid shape (its vertices; a round
+    // tool's whole surface)
     projector.resolve(tracks);
     for (RigidTrack& track : tracks) finish_substep(track);
 
@@ -241,10 +242,11 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   }
   body.loads_.nodal_forces = user_forces;
   if (body.last_report_.ok()) {
+    // measured before the lock is taken: a haptic thread reading the wrench does not wait on it
+    std::vector<double> depths;
+    for (const RigidTrack& track : tracks) depths.push_back(ContactProjector::penetration(body, track));
     const std::lock_guard<std::mutex> lock(wrench_mutex_);
-    for (const RigidTrack& track : tracks) {
-      wrenches_[track.object][&body].penetration = ContactProjector::penetration(body, track);
-    }
+    for (std::size_t i = 0; i < tracks.size(); ++i) wrenches_[tracks[i].object][&body].penetration = depths[i];
   }
 
   // hand the dynamic bodies the tissue's impulses (and the motion they had in the sub-steps)
