@@ -4,6 +4,7 @@
 // (docs/bullet-plugin.md, section 2).
 #pragma once
 
+#include <map>
 #include <utility>
 #include <vector>
 
@@ -18,9 +19,8 @@ namespace cubespring::bullet {
 // Contacts between a soft body's surface and one rigid body at a time: every surface point inside
 // it is moved out, which changes no momentum, and the two exchange an inelastic impulse along the
 // normal that stops the point's approach and, within Coulomb's cone, a tangential one that stops
-// its sliding, through their effective masses. The points of a pass are resolved together: a
-// node reached by several takes the weighted mean of their corrections (apply_points). The
-// rigid track takes the opposite of what the tissue took.
+// its sliding, through their effective masses. The points of a pass are resolved together, by
+// projected Gauss-Seidel (apply_points). The rigid track takes the opposite of what the tissue took.
 class ContactProjector {
  public:
   explicit ContactProjector(SoftBody& body) : body_(body) {}
@@ -37,8 +37,13 @@ class ContactProjector {
   struct ContactPoint {
     Eigen::Vector3d push{0, 0, 0};      // the move that takes it out of the rigid body [m]
     Eigen::Vector3d contact{0, 0, 0};   // where it touches [m]
-    Eigen::Vector3d impulse{0, 0, 0};   // the impulse it would take on its own [N s]
+    Eigen::Vector3d normal{0, 0, 0};    // of the push
+    double lift = 0.0;                  // the projection's multiplier so far [kg m]
+    Eigen::Vector3d impulse{0, 0, 0};   // the tissue's impulse at it so far [N s]
     double inverse_mass = 0.0;          // [1/kg]
+    int vertex = -1;                    // the surface vertex of a vertex point, else -1
+    double share = 0.0;                 // the weights on the nodes it moves, summed: an impulse J
+                                        // there gives them the momentum share J
     int first_node = 0, end_node = 0;
   };
 
@@ -54,15 +59,34 @@ class ContactProjector {
   void add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push);
   ContactPoint& new_point(const Eigen::Vector3d& push);
   void add_vertex(ContactPoint& point, int vertex, double scale);
-  // count: whether the points count as contacts of the sub-step (RigidTrack::substep_contacts)
-  void apply_points(RigidTrack& track, bool count = true);
+  // The impulses a rigid body's vertex points took in the last sub-step, by surface vertex: each
+  // starts the next sub-step's sweeps from it (warm start), as a resting contact needs about the
+  // same impulse every sub-step.
+  struct LastImpulses {
+    std::vector<Eigen::Vector3d> by_vertex;  // [N s], zero where no point was
+    std::vector<int> vertices;               // where it is not zero
+    bool seen = false;                       // in the current resolve()
+  };
+  // count: whether the points count as contacts of the sub-step (RigidTrack::substep_contacts);
+  // last: the track's impulses of the last sub-step, for vertex points
+  void apply_points(RigidTrack& track, bool count = true, LastImpulses* last = nullptr);
+  // Keeps the impulses of this pass's vertex points in `last`, and only those.
+  void remember(LastImpulses& last) const;
+  // The parts of apply_points(): each point's inverse mass, contact point and normal; the
+  // positions' sweeps; the velocities' sweeps, started from `last`.
+  void prepare_points(RigidTrack& track, bool count);
+  void project_positions();
+  void resolve_impulses(RigidTrack& track, const LastImpulses* last);
+  bool movable(int node, double weight) const;
+  // A point's weighted sum of a per-node field (positions, velocities), and a change of it given
+  // to the point's movable nodes as a mass-weighted share of `change` (a move times W, an impulse).
+  Eigen::Vector3d at_point(const ContactPoint& point, const Eigen::Matrix3Xd& field) const;
+  void move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change) const;
 
   SoftBody& body_;
   std::vector<ContactPoint> points_;               // this pass's contacts
   std::vector<std::pair<int, double>> point_nodes_;
-  std::vector<double> node_weight_;                // per node: the points' weights on it, summed
-  Eigen::Matrix3Xd node_position_, node_velocity_;  // per node: the points' corrections, weighted
-  std::vector<int> moved_nodes_;                   // the nodes some point reaches
+  std::map<const btCollisionObject*, LastImpulses> last_impulses_;
 };
 
 }  // namespace cubespring::bullet

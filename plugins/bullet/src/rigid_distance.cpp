@@ -42,14 +42,20 @@ struct Exit {
 // tissue's outward normal `surface_normal` there: the face through which that normal, followed
 // inward, leaves the shape (least room / cos of the angle between the face normal and -normal).
 // The move stays perpendicular to that face. Without a usable normal, the shortest way out.
-Eigen::Vector3d push_through(const std::vector<Exit>& exits, const Eigen::Vector3d& surface_normal) {
+// Only faces at most `max_detour` [m] farther than the nearest are taken: an edge pressed into
+// the tissue has both its faces near, while a face farther away than a contact reaches is no edge
+// this point is at (a tissue's side wall grazing a table's top, its normal tilted up, would be
+// thrown through the far side of the table: a liver on the demo's table blew up so).
+Eigen::Vector3d push_through(const std::vector<Exit>& exits, const Eigen::Vector3d& surface_normal, double max_detour) {
   const Exit* shortest = &exits.front();
+  for (const Exit& exit : exits) {
+    if (exit.room < shortest->room) shortest = &exit;
+  }
   const Exit* pressed = nullptr;
   double pressed_reach = std::numeric_limits<double>::infinity();
   for (const Exit& exit : exits) {
-    if (exit.room < shortest->room) shortest = &exit;
     const double cosine = -exit.normal.dot(surface_normal);
-    if (cosine > 0.0 && exit.room < pressed_reach * cosine) {
+    if (cosine > 0.0 && exit.room <= shortest->room + max_detour && exit.room < pressed_reach * cosine) {
       pressed = &exit;
       pressed_reach = exit.room / cosine;
     }
@@ -60,19 +66,19 @@ Eigen::Vector3d push_through(const std::vector<Exit>& exits, const Eigen::Vector
 
 // Out of a box centred at the origin (local frame), or nothing when outside.
 std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen::Vector3d& p,
-                                        const Eigen::Vector3d& surface_normal) {
+                                        const Eigen::Vector3d& surface_normal, double max_detour) {
   const Eigen::Vector3d room = half - p.cwiseAbs();
   if ((room.array() <= 0.0).any()) return std::nullopt;
   std::vector<Exit> exits;
   for (int axis = 0; axis < 3; ++axis) {
     for (const double side : {-1.0, 1.0}) exits.push_back({half[axis] - side * p[axis], side * Eigen::Vector3d::Unit(axis)});
   }
-  return push_through(exits, surface_normal);
+  return push_through(exits, surface_normal, max_detour);
 }
 
 // A cylinder about an axis: out through an end or the side, whose face here is its tangent plane.
 std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, int axis, const Eigen::Vector3d& p,
-                                             const Eigen::Vector3d& surface_normal) {
+                                             const Eigen::Vector3d& surface_normal, double max_detour) {
   Eigen::Vector3d radial = p;
   radial[axis] = 0.0;
   const double r = radial.norm();
@@ -80,7 +86,7 @@ std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, 
   std::vector<Exit> exits{{half_height - p[axis], Eigen::Vector3d::Unit(axis)},
                           {half_height + p[axis], -Eigen::Vector3d::Unit(axis)}};
   if (r > 0.0) exits.push_back({radius - r, radial / r});
-  return push_through(exits, surface_normal);
+  return push_through(exits, surface_normal, max_detour);
 }
 
 std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, int axis, const Eigen::Vector3d& p) {
@@ -102,7 +108,7 @@ std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, i
 // thread, and rebuilt when the shape no longer has the support points it had (changed, or
 // another shape at the same address).
 std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen::Vector3d& p,
-                                         const Eigen::Vector3d& surface_normal, double offset) {
+                                         const Eigen::Vector3d& surface_normal, double offset, double max_detour) {
   struct Entry {
     Eigen::Matrix3d fingerprint = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
     std::vector<Eigen::Vector4d> planes;
@@ -133,13 +139,14 @@ std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen
     if (room <= 0.0) return std::nullopt;
     exits.push_back({room, plane.head<3>()});
   }
-  return push_through(exits, surface_normal);
+  return push_through(exits, surface_normal, max_detour);
 }
 
 // Each shape's own test on its dimensions grown by the offset.
 std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const btTransform& transform,
                                            const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
-                                           double offset) {
+                                           const ContactReach& reach) {
+  const double offset = reach.offset;
   // exact inside tests in the shape's frame: Bullet's GJK signed distance is unreliable for
   // points deep inside a shape, which is where a projection needs it most
   const Eigen::Vector3d p = to_eigen(transform.invXform(to_bt(point)));
@@ -150,7 +157,8 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       push = capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()) + offset, 0.0, 2, p);
       break;
     case BOX_SHAPE_PROXYTYPE:
-      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()).array() + offset, p, n);
+      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()).array() + offset, p, n,
+                      reach.thickness);
       break;
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto& capsule = static_cast<const btCapsuleShape&>(convex);
@@ -162,11 +170,12 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       const auto& cylinder = static_cast<const btCylinderShape&>(convex);
       const int axis = cylinder.getUpAxis();
       const Eigen::Vector3d half = to_eigen(cylinder.getHalfExtentsWithMargin());
-      push = cylinder_push(static_cast<double>(cylinder.getRadius()) + offset, half[axis] + offset, axis, p, n);
+      push = cylinder_push(static_cast<double>(cylinder.getRadius()) + offset, half[axis] + offset, axis, p, n,
+                           reach.thickness);
       break;
     }
     default:  // convex hulls, cones, multi-spheres, scaled and user shapes
-      push = hull_push(convex, p, n, offset);
+      push = hull_push(convex, p, n, offset, reach.thickness);
       break;
   }
   if (!push) return std::nullopt;
@@ -250,7 +259,7 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
     return deepest;
   }
   if (shape.isConvex()) {
-    return convex_push(static_cast<const btConvexShape&>(shape), transform, point, surface_normal, reach.offset);
+    return convex_push(static_cast<const btConvexShape&>(shape), transform, point, surface_normal, reach);
   }
   if (shape.isConcave()) return concave_push(static_cast<const btConcaveShape&>(shape), transform, point, reach);
   return std::nullopt;

@@ -16,7 +16,8 @@ struct ContactReach {
   /// The surface is taken this far outside the shape: a skin that keeps the tissue off it.
   double offset = 0.0;
   /// One-sided surfaces (triangle meshes, and surface triangles in face_penetration): how deep
-  /// behind them a point is still taken as inside and pushed out.
+  /// behind them a point is still taken as inside and pushed out. Flat-faced shapes: how much
+  /// farther than its nearest face the face the tissue presses on may be.
   double thickness = 0.0;
 };
 
@@ -25,7 +26,8 @@ struct ContactReach {
 /// shape. For flat-faced shapes (boxes,
 /// cylinders, hulls) the face is the one the tissue presses on, found by the tissue's outward
 /// unit normal `surface_normal` at the point (zero: unknown, then the nearest face); the move is
-/// the shortest out through that face (docs/bullet-plugin.md, section 2.2). Convex shapes,
+/// the shortest out through that face, if it is at most reach.thickness farther than the nearest
+/// face (else the nearest: docs/bullet-plugin.md, section 2.2). Convex shapes,
 /// compounds of them, static planes and concave triangle meshes (one-sided: inside means behind
 /// the nearest triangle, less than reach.thickness deep). Spheres, boxes, capsules, cylinders and
 /// convex polyhedra (hulls) are tested exactly in their own frame, grown by the offset face by

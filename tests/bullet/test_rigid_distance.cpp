@@ -1,0 +1,70 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The way out of a flat-faced rigid shape (rigid_distance.h): through the face the tissue presses
+// on at an edge, but never through a face far beyond the nearest one.
+#include <gtest/gtest.h>
+
+#include "rigid_distance.h"
+
+namespace cubespring::bullet {
+namespace {
+
+constexpr double kCell = 0.008;
+
+ContactReach two_cells() {
+  ContactReach reach;
+  reach.thickness = 2 * kCell;  // what the contact projector gives without max_depth
+  return reach;
+}
+
+void expect_near(const std::optional<Eigen::Vector3d>& push, const Eigen::Vector3d& expected) {
+  ASSERT_TRUE(push.has_value());
+  // Bullet may be single precision: its shapes hold floats
+  EXPECT_LT((*push - expected).norm(), 1e-7) << "push " << push->transpose() << ", expected " << expected.transpose();
+}
+
+// The scene's table: a slab 50 cm square and 2 cm thick whose top is z = 0.
+btBoxShape table_shape() { return btBoxShape(btVector3(0.25f, 0.25f, 0.01f)); }
+btTransform table_place() { return btTransform(btQuaternion::getIdentity(), btVector3(0, 0, -0.01f)); }
+
+TEST(RigidDistance, ASideWallGrazingATableLeavesThroughItsTop) {
+  // a point of an organ's side wall, its outward normal tilted 7 degrees up, 0.05 mm into the
+  // table: the ray into the tissue leaves the slab through its side 17 cm away, which threw the
+  // point there (a liver on the table blew up at once); the nearest way out is up
+  const btBoxShape table = table_shape();
+  const Eigen::Vector3d point(-0.08, 0.05, -5e-5);
+  const Eigen::Vector3d wall_normal = Eigen::Vector3d(0.763, -0.636, 0.115).normalized();
+  expect_near(penetration_push(table, table_place(), point, wall_normal, two_cells()), Eigen::Vector3d(0, 0, 5e-5));
+}
+
+TEST(RigidDistance, AnEdgePressedIntoTheTissueLeavesThroughThePressingFace) {
+  // a 2 cm box sunk 2 mm into tissue whose surface faces up meets a vertex 0.5 mm behind its
+  // leading face: the face pressing on the tissue is its bottom, 2 mm away (the nearest face, its
+  // leading one, would push the vertex forward into a wall ahead of the box)
+  const btBoxShape box(btVector3(0.01f, 0.01f, 0.01f));
+  const btTransform place = btTransform::getIdentity();
+  const Eigen::Vector3d point(0.0095, 0.0, -0.008);
+  const Eigen::Vector3d up(0, 0, 1);
+  expect_near(penetration_push(box, place, point, up, two_cells()), Eigen::Vector3d(0, 0, -0.002));
+  // the same face only while it lies within reach.thickness of the nearest one
+  ContactReach short_reach;
+  short_reach.thickness = 0.001;
+  expect_near(penetration_push(box, place, point, up, short_reach), Eigen::Vector3d(0.0005, 0, 0));
+}
+
+TEST(RigidDistance, ACylinderAndAHullFollowTheSameRule) {
+  // the grazing side wall against a cylinder table and a hull table: up, not through the side
+  const Eigen::Vector3d point(-0.08, 0.05, -5e-5);
+  const Eigen::Vector3d wall_normal = Eigen::Vector3d(0.763, -0.636, 0.115).normalized();
+  const btCylinderShapeZ cylinder(btVector3(0.25f, 0.25f, 0.01f));
+  expect_near(penetration_push(cylinder, table_place(), point, wall_normal, two_cells()), Eigen::Vector3d(0, 0, 5e-5));
+  btConvexHullShape hull;
+  for (int corner = 0; corner < 8; ++corner) {
+    hull.addPoint(btVector3(corner & 1 ? 0.25f : -0.25f, corner & 2 ? 0.25f : -0.25f, corner & 4 ? 0.01f : -0.01f));
+  }
+  hull.setMargin(0);
+  expect_near(penetration_push(hull, table_place(), point, wall_normal, two_cells()), Eigen::Vector3d(0, 0, 5e-5));
+}
+
+}  // namespace
+}  // namespace cubespring::bullet
