@@ -180,6 +180,23 @@ TEST(BulletWorld, AWorldStepOfTooManySubStepsStopsTheBody) {
   EXPECT_TRUE(soft->state() == before);
 }
 
+// The visual mesh is checked before its long edges are split for contact: a triangle naming a
+// vertex the mesh does not have is refused by name, not read past the vertices.
+TEST(BulletWorld, AVisualMeshWithABadTriangleIsRefusedByName) {
+  Material material;
+  material.young_modulus = 1e5;
+  bullet::SoftBodySettings settings = block({2, 2, 2}, 0.01, material);
+  TriangleMesh visual;
+  visual.vertices.resize(3, 3);
+  visual.vertices << 0, 0.02, 0, 0, 0, 0.02, 0, 0, 0;
+  visual.triangles.resize(3, 1);
+  visual.triangles << 0, 1, 7;
+  settings.visual_mesh = visual;
+  const Result<std::unique_ptr<bullet::SoftBody>> body = bullet::SoftBody::create(settings);
+  ASSERT_FALSE(body.ok());
+  EXPECT_NE(body.message().find("triangle 0 refers to vertex 7"), std::string::npos) << body.message();
+}
+
 TEST(BulletWorld, AnUnstableBodyStopsAndResetsToAStateSavedBefore) {
   BulletScene scene;
   scene.add_floor();

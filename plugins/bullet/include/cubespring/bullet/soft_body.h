@@ -54,8 +54,9 @@ struct SoftBodySettings {
   /// law's cells; docs/model-neo-hookean.md); kSprings steps the cell model as calibrated, on the
   /// faster grid passes.
   CellLaw law = CellLaw::kNeoHookean;
-  /// The surface the user sees, embedded in the lattice; contact acts on its vertices. Without
-  /// one, contact acts on the nodes of the lattice's boundary faces.
+  /// The surface the user sees, embedded in the lattice; contact acts on it, its edges split to
+  /// at most 1.5 cells (surface_vertices()). Without one, contact acts on the nodes of the
+  /// lattice's boundary faces.
   std::optional<TriangleMesh> visual_mesh;
   /// kSymplecticEuler (default): sub-steps at the body's stable explicit step, which contact and
   /// tool forces need to be followed; kImplicitEuler: sub-steps of at most max_implicit_step.
@@ -90,7 +91,9 @@ class SoftBody {
   Loads& loads() { return loads_; }
 
   /// Contact surface: vertices at the current state, and their triangles (counter-clockwise from
-  /// outside). The visual mesh when there is one, else the lattice's boundary faces.
+  /// outside). The visual mesh when there is one, its edges longer than 1.5 cells split at their
+  /// midpoints until none is (its vertices first, in their order, then the midpoints: contact does
+  /// not depend on how coarse the visual mesh is); else the lattice's boundary faces.
   const Eigen::Matrix3Xd& surface_vertices() const { return surface_positions_; }
   const Eigen::Matrix3Xi& surface_triangles() const { return surface_triangles_; }
   /// The visual mesh's embedding (empty without a visual mesh).
