@@ -9,6 +9,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "cell_geometry.h"
 #include "cubespring/stiffness.h"
 
 namespace cubespring {
@@ -79,6 +80,22 @@ double max_frequency(const Model& model, FrequencyBound bound) {
   const double gershgorin = gershgorin_bound(stiffness, model.mass);
   if (bound == FrequencyBound::kGershgorin) return std::sqrt(gershgorin);
   return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.mass)));
+}
+
+double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positions) {
+  if (model.cell_law == CellLaw::kSprings) return 1.0;
+  constexpr double kLeast = 0.2;
+  double thinnest = 1.0;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const CellFrame frame = cell_frame(model, positions, c);
+    const double volume = frame.volume();
+    for (int axis = 0; axis < 3; ++axis) {
+      const double face = frame.edge[(axis + 1) % 3].cross(frame.edge[(axis + 2) % 3]).norm();
+      const double thickness = face > 0.0 ? volume / face / model.cell_size[axis] : 0.0;  // of the rest size
+      thinnest = std::min(thinnest, std::max(thickness, 0.0));
+    }
+  }
+  return std::clamp(thinnest / kThickEnough, kLeast, 1.0);
 }
 
 double max_stable_time_step(const Model& model, FrequencyBound bound) {

@@ -32,4 +32,17 @@ double max_frequency(const Model& model, FrequencyBound bound = FrequencyBound::
 /// lower omega_max), so the limit holds for any constraints.
 double max_stable_time_step(const Model& model, FrequencyBound bound = FrequencyBound::kGershgorin);
 
+/// The fraction of the rest step that stays stable in the state `positions` [m], in (0, 1]. A
+/// cell squeezed or sheared thin carries waves across it sooner, so a step stable at rest is not
+/// then: a 200 g box dropped onto 5 kPa tissue thinned cells under its edges to a quarter and blew
+/// up at 0.9 of the rest step, where at 0.5 it ran. A cell's thickness across each pair of its faces
+/// is its volume over the area its other two mean edges span, over its rest size along that axis;
+/// cells at least kThickEnough of their rest thickness keep the rest step (the rest step's own
+/// margin holds them), thinner ones shrink it in proportion, down to 0.2 of it (five times as many
+/// sub-steps: an inverted or flat cell is reported by the step, not followed forever). 1 for the
+/// springs law (CellLaw::kSprings), whose springs are linear in their length: a thin cell is no
+/// stiffer (the default demo, whose probe crushes cells, ran as stable and took twice as long).
+double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positions);
+inline constexpr double kThickEnough = 0.5;
+
 }  // namespace cubespring

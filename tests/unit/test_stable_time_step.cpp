@@ -107,5 +107,44 @@ TEST(StableTimeStep, SymplecticEulerIsStableJustBelowTheLanczosLimitAndNotJustAb
   }
 }
 
+// The thin-cell factor against the geometry it reads: a brick cell's thickness across each pair
+// of faces is its volume over the area of the other two, whatever the shear.
+TEST(CompressedStepFactor, FollowsTheThinnestCellAndOnlyTheNeoHookeanLaw) {
+  Material tissue;
+  tissue.young_modulus = 5e3;
+  tissue.poisson_ratio = 0.45;
+  LatticeDesc desc = box_lattice({1, 1, 1}, {0.01, 0.012, 0.008}, tissue);
+  desc.law = CellLaw::kNeoHookean;
+  const Model model = build_model(desc).value();
+  EXPECT_EQ(compressed_step_factor(model, model.rest_positions), 1.0);
+
+  // the top face lowered to 30% of the height, then slid 2 mm along x: the thickness across z
+  // stays 30% (a shear keeps volume and base; across x it is 0.0024 / |(0.002, 0.0024)| = 77%),
+  // so 0.3 / 0.5 of the rest step
+  Eigen::Matrix3Xd squeezed = model.rest_positions;
+  for (int corner = 4; corner < 8; ++corner) {
+    const int node = model.cell_nodes[0][static_cast<std::size_t>(corner)];
+    squeezed(2, node) = 0.3 * 0.008;
+    squeezed(0, node) += 0.002;
+  }
+  EXPECT_NEAR(compressed_step_factor(model, squeezed), 0.3 / kThickEnough, 1e-12);
+
+  // a cell at 60% keeps the rest step; an inverted one asks for the least, 0.2
+  Eigen::Matrix3Xd mild = model.rest_positions;
+  Eigen::Matrix3Xd inverted = model.rest_positions;
+  for (int corner = 4; corner < 8; ++corner) {
+    const int node = model.cell_nodes[0][static_cast<std::size_t>(corner)];
+    mild(2, node) = 0.6 * 0.008;
+    inverted(2, node) = -0.2 * 0.008;
+  }
+  EXPECT_EQ(compressed_step_factor(model, mild), 1.0);
+  EXPECT_EQ(compressed_step_factor(model, inverted), 0.2);
+
+  // the springs law's springs are linear in length: no thinner step
+  desc.law = CellLaw::kSprings;
+  const Model springs = build_model(desc).value();
+  EXPECT_EQ(compressed_step_factor(springs, squeezed), 1.0);
+}
+
 }  // namespace
 }  // namespace cubespring

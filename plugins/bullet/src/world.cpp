@@ -10,8 +10,9 @@
 
 #include <LinearMath/btTransformUtil.h>
 
-#include "conversions.h"
 #include "contact_projector.h"
+#include "conversions.h"
+#include "cubespring/stable_time_step.h"
 #include "rigid_track.h"
 
 namespace cubespring::bullet {
@@ -195,21 +196,40 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     body.stop_message_ = "soft body stopped at t = " + std::to_string(time_) + " s: " + message.str();
     return;
   }
-  const int substeps = std::max(1, static_cast<int>(needed));
-  const double dt = step_length / substeps;
+  // explicit sub-steps follow the body's state: a cell squeezed thin takes a shorter step than at
+  // rest (compressed_step_factor); what is left of the world step is planned again every few
+  // sub-steps, at equal sub-steps (the same ones as at rest while no cell is thin)
+  const bool explicit_steps = body.step_settings_.integrator != Integrator::kImplicitEuler;
+  constexpr int kReplanEvery = 4;
+  int remaining = std::max(1, static_cast<int>(needed));
+  double plan_start = 0.0;  // the plan's sub-steps run from here
+  int planned = 0;          // sub-steps of the plan taken
+  double dt = step_length / remaining;
   const Eigen::Matrix3Xd user_forces = body.loads_.nodal_forces;
-  body.step_settings_.time_step = dt;
   const bool held_anchors = has_held_anchors(body, tracks, anchor_track);
   std::unique_ptr<ContactProjector>& kept = projectors_[&body];
   if (!kept) kept = std::make_unique<ContactProjector>(body);
   ContactProjector& projector = *kept;
   Eigen::Matrix3Xd velocities_before;
-  for (int k = 0; k < substeps; ++k) {
+  for (int k = 0; remaining > 0; ++k) {
+    if (explicit_steps && k % kReplanEvery == 0) {
+      const double left = step_length - (plan_start + planned * dt);
+      const double allowed = body.sub_step_ * compressed_step_factor(body.model_, body.state_.positions);
+      const int wanted = std::max(1, static_cast<int>(std::ceil(left / allowed - 1e-9)));
+      if (wanted != remaining) {
+        plan_start += planned * dt;
+        planned = 0;
+        remaining = wanted;
+        dt = left / remaining;
+      }
+    }
+    const double elapsed = plan_start + planned * dt;  // before this sub-step
+    body.step_settings_.time_step = dt;
     for (RigidTrack& track : tracks) {
       track.substep_impulse.setZero();
       track.substep_angular_impulse.setZero();
       track.substep_contacts = 0;
-      advance_track(track, k * dt, dt, kinematic_pose_time);
+      advance_track(track, elapsed, dt, kinematic_pose_time);
     }
     body.loads_.nodal_forces = user_forces;
     drive_anchors(body, tracks, anchor_track, dt);
@@ -218,7 +238,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
                                                   body.state_);
     body.last_report_ = report;
     if (!report.ok()) {
-      body.stop_message_ = "soft body stopped at t = " + std::to_string(time_ + k * dt) + " s: " + report.message;
+      body.stop_message_ = "soft body stopped at t = " + std::to_string(time_ + elapsed) + " s: " + report.message;
       break;
     }
     if (held_anchors) report_held_anchors(body, tracks, anchor_track, velocities_before, dt);
@@ -228,16 +248,19 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     // tool's whole surface)
     projector.resolve(tracks);
     for (RigidTrack& track : tracks) finish_substep(track);
+    ++planned;
+    --remaining;
+    const double done = plan_start + planned * dt;
 
     // the mean over the step so far: a single sub-step's impulse flickers as vertices touch and
     // leave, its mean over the step is the force that holds the body
     const std::lock_guard<std::mutex> lock(wrench_mutex_);
     for (const RigidTrack& track : tracks) {
       ContactWrench& wrench = wrenches_[track.object][&body];
-      wrench.force = track.impulse / ((k + 1) * dt);
-      wrench.torque = track.angular_impulse / ((k + 1) * dt);
+      wrench.force = track.impulse / done;
+      wrench.torque = track.angular_impulse / done;
       wrench.contacts = track.substep_contacts;
-      wrench.time = time_ + (k + 1) * dt;
+      wrench.time = time_ + done;
     }
   }
   body.loads_.nodal_forces = user_forces;
