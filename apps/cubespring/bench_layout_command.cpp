@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -45,24 +44,9 @@ struct LayoutRow {
 const double kSolidBallFill = std::acos(-1.0) / 6.0;
 
 std::vector<double> parse_fills(const std::string& text) {
-  std::vector<double> fills;
-  std::stringstream stream(text);
-  std::string item;
-  while (std::getline(stream, item, ',')) {
-    std::size_t used = 0;
-    double fill = 0;
-    try {
-      fill = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || !(fill > 0.0 && fill <= kSolidBallFill)) {
-      throw std::runtime_error("--fills: '" + item + "' is not a fraction in (0, 0.52] (a solid ball fills 0.52 of its box)");
-    }
-    fills.push_back(fill);
-  }
-  if (fills.empty()) throw std::runtime_error("--fills: expected at least one fraction");
-  return fills;
+  return parse_number_list(
+      text, "--fills", [](double fill) { return fill > 0.0 && fill <= kSolidBallFill; },
+      "a fraction in (0, 0.52] (a solid ball fills 0.52 of its box)");
 }
 
 double box_fill(const Model& model) {

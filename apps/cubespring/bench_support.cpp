@@ -35,6 +35,26 @@ std::vector<Eigen::Vector3i> parse_size_list(const std::string& text) {
   return sizes;
 }
 
+std::vector<double> parse_number_list(const std::string& text, const std::string& flag, bool (*accept)(double),
+                                      const std::string& expected) {
+  std::vector<double> numbers;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) {
+    std::size_t used = 0;
+    double value = 0.0;
+    try {
+      value = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !accept(value)) throw std::runtime_error(flag + ": '" + item + "' is not " + expected);
+    numbers.push_back(value);
+  }
+  if (numbers.empty()) throw std::runtime_error(flag + ": expected at least one value, got '" + text + "'");
+  return numbers;
+}
+
 LatticeDesc ball_lattice(int across, double cell_size, const Material& material, double hollow) {
   LatticeDesc desc;
   desc.cell_size.setConstant(cell_size);

@@ -19,6 +19,11 @@ std::string cpu_name();
 /// "NX,NY,NZ;NX,NY,NZ;..." as block sizes; throws std::runtime_error naming --sizes.
 std::vector<Eigen::Vector3i> parse_size_list(const std::string& text);
 
+/// "a,b,c" as numbers that each pass `accept`; throws std::runtime_error naming `flag`, the part
+/// at fault and `expected` (what a value must be).
+std::vector<double> parse_number_list(const std::string& text, const std::string& flag, bool (*accept)(double),
+                                      const std::string& expected);
+
 /// The cells of `across`^3 whose centres lie in the ball inscribed in that box and outside the
 /// concentric ball of `hollow` times its radius (0: a solid ball), cubes of cell_size [m], one
 /// material.

@@ -18,6 +18,8 @@ Command add_bench_voxelize_command(CLI::App& app);
 Command add_bench_layout_command(CLI::App& app);
 /// Only with Bullet (CUBESPRING_HAS_BULLET).
 Command add_bench_bullet_command(CLI::App& app);
+/// Only with the Bullet plugin (CUBESPRING_HAS_BULLET_PLUGIN).
+Command add_bench_contact_command(CLI::App& app);
 /// Only with Bullet and the renderer (CUBESPRING_HAS_DEMO); with no subcommand, main runs it.
 Command add_run_command(CLI::App& app);
 /// Only with the demo (CUBESPRING_HAS_DEMO): the demo's physics and rendering costs.

@@ -25,6 +25,9 @@ int main(int argc, char** argv) {
 #ifdef CUBESPRING_HAS_BULLET
   commands["bench-bullet"] = cubespring::app::add_bench_bullet_command(app);
 #endif
+#ifdef CUBESPRING_HAS_BULLET_PLUGIN
+  commands["bench-contact"] = cubespring::app::add_bench_contact_command(app);
+#endif
 #ifdef CUBESPRING_HAS_DEMO
   commands["run"] = cubespring::app::add_run_command(app);
   commands["bench-render"] = cubespring::app::add_bench_render_command(app);

@@ -284,6 +284,30 @@ TEST(Cli, BenchBulletRowsCoverEveryEngineAndThreadCount) {
 }
 #endif
 
+#ifdef CUBESPRING_HAS_BULLET_PLUGIN
+// A short bench-contact run: a 5 mm probe pressed and dragged over the block of 1 cm cells at
+// 10 cm/s, and a 20 g box dropped on it. The surface stays out of the probe within the contact
+// issue's 0.5 mm, its force never halves while pressing, and the box rests carried by the tissue.
+TEST(Cli, BenchContactProbesAndDropsWithinTheContactTargets) {
+  const nlohmann::json out = run_json(
+      "bench-contact --cells-across 10 --radii 0.0025 --speeds 0.1 --steps 0.0166667 --drops 0.02");
+  ASSERT_EQ(out["probes"].size(), 1u) << out.dump();
+  const nlohmann::json& probe = out["probes"][0];
+  EXPECT_EQ(probe["failure"], "") << probe.dump();
+  EXPECT_LE(probe["deepest_m"].get<double>(), probe["allowed_m"].get<double>()) << probe.dump();
+  EXPECT_EQ(probe["allowed_m"].get<double>(), 0.5e-3);
+  EXPECT_EQ(probe["force_drops"].get<int>(), 0) << probe.dump();
+  EXPECT_GT(probe["drag_force_N"].get<double>(), 0.05) << probe.dump();
+  EXPECT_GT(probe["wall_per_simulated"].get<double>(), 0.0);
+  ASSERT_EQ(out["drops"].size(), 1u) << out.dump();
+  const nlohmann::json& drop = out["drops"][0];
+  EXPECT_EQ(drop["failure"], "") << drop.dump();
+  EXPECT_LT(drop["speed_m_per_s"].get<double>(), 1e-3) << drop.dump();
+  EXPECT_NEAR(drop["carried_over_weight"].get<double>(), 1.0, 0.02) << drop.dump();
+  EXPECT_GT(drop["sunk_m"].get<double>(), 0.0) << drop.dump();
+}
+#endif
+
 struct BadArgument {
   const char* arguments;
   const char* named;  // what the one-line error must name
@@ -336,5 +360,14 @@ INSTANTIATE_TEST_SUITE_P(
                                   "--min-fraction"},
                       BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --samples 9", "--samples"},
                       BadArgument{"measure elongation --cells 200000,1,1", "from 1 to 100000"}));
+
+#ifdef CUBESPRING_HAS_BULLET_PLUGIN
+INSTANTIATE_TEST_SUITE_P(BenchContactBadArguments, CliRejects,
+                         ::testing::Values(BadArgument{"bench-contact --radii 0.001,0", "--radii"},
+                                           BadArgument{"bench-contact --cells-across 2.5", "--cells-across"},
+                                           BadArgument{"bench-contact --mesh /nonexistent/organ.obj --radii 0.001 "
+                                                       "--speeds 0.1 --steps 0.01 --cells-across 4 --drops 0.01",
+                                                       "/nonexistent/organ.obj"}));
+#endif
 
 }  // namespace
