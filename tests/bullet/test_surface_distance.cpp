@@ -158,5 +158,41 @@ TEST(RoundToolContact, ACoreInsideOrOutsideIsAtItsSignedDistance) {
   for (const CoreContact& contact : along_edge) EXPECT_GT(contact.signed_distance, 0.0);
 }
 
+
+// Where the surface folds around a thin tool its walls cross, and the nearest point's
+// pseudonormal can put the core inside the tissue when it is not. A core that was outside a
+// moment ago cannot be far inside now: core_contacts takes an inside verdict deeper than the
+// depth it is told to believe as a fold's, and holds the core with the points that face it.
+TEST(RoundToolContact, AnInsideVerdictDeeperThanBelievedIsAFoldAndThePointsFacingTheCoreHoldIt) {
+  Eigen::Matrix3Xd x(3, 0);
+  Eigen::Matrix3Xi tri(3, 0);
+  add_octahedron(1.0, Eigen::Vector3d::Zero(), x, tri);  // its (+,+,+) face is x + y + z = 1
+  // a second part whose (-,-,-) face, x + y + z = 3 s - 1, faces the first from 0.08 beyond the core
+  const double beyond = 0.08;
+  const double s = (1.9 + beyond * std::sqrt(3.0)) / 3.0;
+  add_octahedron(1.0, Eigen::Vector3d::Constant(s), x, tri);
+  const SurfaceTopology topology = surface_topology(x, tri);
+  std::vector<int> all(16);
+  for (int t = 0; t < 16; ++t) all[static_cast<std::size_t>(t)] = t;
+  // the core on the first face's normal, 0.1 / sqrt(3) behind it: the nearest surface point
+  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(0.3);
+  const double behind = 0.1 / std::sqrt(3.0);
+  const RoundCore sphere{centre, centre, 0.1};
+
+  const std::vector<CoreContact> believed = core_contacts(sphere, x, tri, topology, all, 0.1);
+  ASSERT_EQ(believed.size(), 1u);
+  EXPECT_NEAR(believed[0].signed_distance, -behind, 1e-12) << "believed: the core is inside";
+  EXPECT_EQ(core_contacts(sphere, x, tri, topology, all, 0.1, 1.01 * behind).size(), 1u);
+
+  const std::vector<CoreContact> fold = core_contacts(sphere, x, tri, topology, all, 0.1, 0.5 * behind);
+  ASSERT_FALSE(fold.empty()) << "the second part's face holds the core";
+  for (const CoreContact& contact : fold) {
+    EXPECT_GT(contact.signed_distance, 0.0);
+    EXPECT_GE(contact.surface.triangle, 8) << "only the part facing the core";
+  }
+  EXPECT_NEAR(fold[0].signed_distance, beyond, 1e-12);
+  EXPECT_NEAR((fold[0].normal + Eigen::Vector3d::Ones().normalized()).norm(), 0.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace cubespring::bullet

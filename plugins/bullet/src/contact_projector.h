@@ -29,8 +29,9 @@ class ContactProjector {
   /// triangle a convex tool reaches through between its corners.
   void resolve(std::vector<RigidTrack>& tracks);
 
-  /// How deep the body's surface reaches into the track's shape [m] (ContactWrench::penetration).
-  static double penetration(const SoftBody& body, const RigidTrack& track);
+  /// How deep the body's surface reaches into the track's shape [m] (ContactWrench::penetration),
+  /// after resolve(): a round tool's inside verdicts are weighed as resolve() weighed them.
+  double penetration(const RigidTrack& track) const;
 
  private:
   // A contact point as a weighted sum of nodes (point_nodes_[first_node .. end_node)).
@@ -83,10 +84,20 @@ class ContactProjector {
   Eigen::Vector3d at_point(const ContactPoint& point, const Eigen::Matrix3Xd& field) const;
   void move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change) const;
 
+  // Where a round tool's core was at the end of the last sub-step, and whether it was outside the
+  // tissue then: an inside verdict deeper than it could have gone since is a fold's sign error.
+  struct LastCore {
+    Eigen::Vector3d from{0, 0, 0};
+    Eigen::Vector3d to{0, 0, 0};
+    bool outside = false;
+    bool seen = false;  // in the current resolve()
+  };
+
   SoftBody& body_;
   std::vector<ContactPoint> points_;               // this pass's contacts
   std::vector<std::pair<int, double>> point_nodes_;
   std::map<const btCollisionObject*, LastImpulses> last_impulses_;
+  std::map<const btCollisionObject*, LastCore> last_cores_;
 };
 
 }  // namespace cubespring::bullet

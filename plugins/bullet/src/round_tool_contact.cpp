@@ -103,7 +103,7 @@ std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix
 
 std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matrix3Xd& positions,
                                       const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                                      const std::vector<int>& candidates, double reach) {
+                                      const std::vector<int>& candidates, double reach, double believed_depth) {
   if (candidates.empty()) return {};
 
   // each candidate's nearest points to the core; the nearest of all tells whether the core is
@@ -120,21 +120,31 @@ std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matri
     return signed_contact(core.from + closest[i].along * (core.to - core.from), {candidates[i], closest[i].barycentric},
                           positions, triangles, topology);
   };
+  const auto believed = [&](const CoreContact& contact) { return -contact.signed_distance <= believed_depth; };
   if (closest[nearest].distance == 0.0) {
     const CoreContact deepest = deepest_inside(core, candidates, positions, triangles, topology);
-    return {deepest.signed_distance < 0.0 ? deepest : contact_of(nearest)};
+    if (deepest.signed_distance >= 0.0) return {contact_of(nearest)};
+    if (believed(deepest)) return {deepest};
   }
   const CoreContact first = contact_of(nearest);
-  if (first.signed_distance < 0.0 || !(first.signed_distance < reach)) return {first};
+  if (first.signed_distance < 0.0 && believed(first)) return {first};
+  if (!(first.signed_distance < reach)) return {first};
 
   // outside: every other part of the surface within reach that faces the core (the two walls of
   // a groove the tool sits in, say), each surface point once: neighbouring triangles find the same
   // point where it lies on the edge or corner they share
-  std::vector<CoreContact> contacts{first};
-  std::vector<Eigen::Vector3d> found{surface_position(positions, triangles, first.surface)};
+  // (an inside verdict not believed leaves the nearest point out: it is on the wrong side of a
+  // fold, and the points around it that face the core hold it)
+  const bool first_faces = first.signed_distance > 0.0;
+  std::vector<CoreContact> contacts;
+  std::vector<Eigen::Vector3d> found;
+  if (first_faces) {
+    contacts.push_back(first);
+    found.push_back(surface_position(positions, triangles, first.surface));
+  }
   const double same = kSamePoint * core.radius;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    if (i == nearest || !(closest[i].distance < reach)) continue;
+    if ((first_faces && i == nearest) || !(closest[i].distance < reach)) continue;
     const CoreContact contact = contact_of(i);
     if (contact.signed_distance <= 0.0) continue;  // the back of a part thinner than the tool
     const Eigen::Vector3d at = surface_position(positions, triangles, contact.surface);

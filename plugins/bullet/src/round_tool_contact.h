@@ -5,6 +5,7 @@
 // (docs/bullet-plugin.md, section 2.6). Lengths in metres.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -47,8 +48,14 @@ std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix
 /// corner) within `reach` of it that faces it, the nearest of all first (also when farther than
 /// `reach`); when the core is inside or crosses the surface, only its deepest point. Empty when
 /// there is no candidate.
+///
+/// `believed_depth` [m]: a verdict that the core is inside deeper than this is not believed, and
+/// the core is taken as outside. Where the surface folds around a thin tool its walls cross, and
+/// the pseudonormal of the nearest point can point the wrong way; a core that was outside a moment
+/// ago cannot be a radius deep now (the caller knows how far it moved). Infinity believes all.
 std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matrix3Xd& positions,
                                       const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                                      const std::vector<int>& candidates, double reach);
+                                      const std::vector<int>& candidates, double reach,
+                                      double believed_depth = std::numeric_limits<double>::infinity());
 
 }  // namespace cubespring::bullet
