@@ -131,7 +131,7 @@ StepReport Stepper::check(const Model& model, const StepSettings& settings, doub
   }
   // the likely cause, not the body's limit itself: finding that assembles the stiffness (seconds
   // and gigabytes for a large body) at the moment the caller learns of the blow-up
-  if (settings.integrator != Integrator::kImplicitEuler) {
+  if (settings.integrator != Integrator::kImplicitEuler && settings.caller_chose_time_step) {
     message << " (is the explicit time step of " << settings.time_step
             << " s above the body's stable step? max_stable_time_step() finds it)";
   }

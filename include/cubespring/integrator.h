@@ -35,6 +35,10 @@ struct StepSettings {
   /// A node faster than this is taken as a blow-up [m/s], >= 0 (infinity: none); 0 means 10 times
   /// the fastest pressure wave speed of the body's materials.
   double speed_limit = 0.0;
+  /// Whether the caller chose time_step: an explicit step that goes unstable then asks whether it
+  /// is above the body's stable step (max_stable_time_step() finds it). A caller that derived the
+  /// step from that limit itself (the Bullet plugin) sets false and names the cause in its terms.
+  bool caller_chose_time_step = true;
 };
 
 enum class StepStatus {

@@ -209,6 +209,11 @@ TEST(BulletWorld, AnUnstableBodyStopsAndResetsToAStateSavedBefore) {
   scene.run(1.0 / 60.0);
   const std::string error = scene.world().getSoftBodyError();
   EXPECT_NE(error.find("soft body stopped at t = "), std::string::npos) << error;
+  // the plugin chose the sub-step: the message says so, rather than asking the scene's author
+  // whether their step is above the stable step
+  EXPECT_NE(error.find("the plugin chose the sub-step of "), std::string::npos) << error;
+  EXPECT_EQ(error.find("max_stable_time_step()"), std::string::npos) << error;
+  EXPECT_EQ(error.find("mass damping"), std::string::npos) << "this tissue is damped: " << error;
   EXPECT_EQ(error, soft->stop_message());
   EXPECT_FALSE(soft->last_report().ok());
   ASSERT_TRUE(soft->state().positions.allFinite());
@@ -232,6 +237,29 @@ TEST(BulletWorld, AnUnstableBodyStopsAndResetsToAStateSavedBefore) {
   EXPECT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
   EXPECT_GT(soft->state().time, saved.time + 0.45);  // it steps again, and rests where it rested
   EXPECT_LT((soft->state().positions - saved.positions).cwiseAbs().maxCoeff(), 0.05 * kCell);
+}
+
+// Tissue without mass damping keeps every vibration that contacts and tools feed it: when such a
+// body goes unstable, the message names the damping and the value soft tissue needs, and a
+// rigid body that outruns the contact, with its speed.
+TEST(BulletWorld, AnUnstableUndampedBodyNamesItsDampingAndAFastTool) {
+  BulletScene scene(Eigen::Vector3d::Zero());
+  bullet::SoftBody* soft = scene.add_soft(block({2, 2, 2}, kCell, tissue(1e5, 0.0)));
+  ASSERT_NE(soft, nullptr);
+  // a kinematic ball flying at the block faster than a tenth of a cell per sub-step
+  // (Bullet gives a kinematic body the velocity of its move over the step: 1 m in 1 ms)
+  btRigidBody* ball = scene.add_rigid(new btSphereShape(btScalar(0.2 * kCell)), 0.0, at(-1.0, 0, 3 * kCell), true);
+  scene.world().stepSimulation(btScalar(1e-3), 0);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty());
+  ball->setWorldTransform(at(0, 0, 3 * kCell));
+  soft->state().velocities.col(0).setConstant(1e6);
+  scene.world().stepSimulation(btScalar(1e-3), 0);
+  const std::string error = scene.world().getSoftBodyError();
+  EXPECT_NE(error.find("the tissue has no mass damping (Material::mass_damping = 0): soft tissue needs about 40/s"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("a rigid body near it moves at 1000 m/s"), std::string::npos) << error;
+  std::printf("%s\n", error.c_str());
 }
 
 // A kinematic sphere pressed in and dragged at a steady speed, its pose set once per

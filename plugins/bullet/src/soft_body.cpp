@@ -54,6 +54,9 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->stepper_ = std::make_unique<Stepper>(body->model_);
   body->step_settings_.integrator = settings.integrator;
   body->step_settings_.threads = settings.threads;
+  // the sub-step is the plugin's choice: a blow-up is explained by the world (instability_causes)
+  body->step_settings_.caller_chose_time_step = false;
+  body->time_step_safety_ = settings.time_step_safety;
   // explicit: the stable step of the body at rest, which its contacts do not stiffen (they move
   // vertices, they add no springs)
   try {

@@ -12,6 +12,7 @@
 
 #include "contact_projector.h"
 #include "conversions.h"
+#include "instability_causes.h"
 #include "cubespring/stable_time_step.h"
 #include "rigid_track.h"
 
@@ -238,7 +239,14 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
                                                   body.state_);
     body.last_report_ = report;
     if (!report.ok()) {
-      body.stop_message_ = "soft body stopped at t = " + std::to_string(time_ + elapsed) + " s: " + report.message;
+      std::string causes;
+      if (explicit_steps && report.status == StepStatus::kUnstable) {
+        // (the step left the state as it was: the thin cells the plan saw)
+        const double squeezed = compressed_step_factor(body.model_, body.state_.positions);
+        causes = instability_causes(body.model_, {dt, body.sub_step_, body.time_step_safety_, squeezed}, tracks);
+      }
+      body.stop_message_ =
+          "soft body stopped at t = " + std::to_string(time_ + elapsed) + " s: " + report.message + causes;
       break;
     }
     if (held_anchors) report_held_anchors(body, tracks, anchor_track, velocities_before, dt);
@@ -267,7 +275,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   if (body.last_report_.ok()) {
     // measured before the lock is taken: a haptic thread reading the wrench does not wait on it
     std::vector<double> depths;
-    for (const RigidTrack& track : tracks) depths.push_back(ContactProjector::penetration(body, track));
+    for (const RigidTrack& track : tracks) depths.push_back(projector.penetration(track));
     const std::lock_guard<std::mutex> lock(wrench_mutex_);
     for (std::size_t i = 0; i < tracks.size(); ++i) wrenches_[tracks[i].object][&body].penetration = depths[i];
   }

@@ -152,6 +152,7 @@ class SoftBody {
   StepSettings step_settings_;
   ContactSettings contact_;
   double sub_step_ = 0.0;
+  double time_step_safety_ = 0.0;  // SoftBodySettings::time_step_safety
   StepReport last_report_;
   std::string stop_message_;
 
