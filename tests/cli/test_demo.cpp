@@ -281,10 +281,13 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   EXPECT_GT(near_pixels, 0);
   EXPECT_GT(near_changed, near_pixels / 2) << "the tissue around the tip moved";
   ASSERT_GT(far_pixels, kWidth * kHeight / 4);
-  // the whole organ gives a little under a 1 N push (0.6 mm at 5 cm from a point load on 8 kPa
-  // tissue), which the displacement colours show as a faint shade: far away stays within it
+  // the whole organ gives under the probe's push, 1.8 N at the pressed frame with the scenes'
+  // neo-Hookean law: the liver keeps its volume within 0.2%, and beyond 5 cm from the tip its
+  // nodes move up to 2 mm (in proportion to the force: the springs law pushed 0.82 N, moved them
+  // 0.96 mm and lost 0.6% of the volume). The displacement colours (1 cm full scale) show that as
+  // a faint shade, visible at the organ's far edges: far away stays within it
   EXPECT_LT(far_mean, 0.1 * near_mean) << "far from the probe, the picture hardly changes";
-  EXPECT_LT(far_changed_visibly, far_pixels / 50) << "far from the probe, the picture hardly changes";
+  EXPECT_LT(far_changed_visibly, far_pixels / 10) << "far from the probe, the picture hardly changes";
   ASSERT_GT(corner_pixels, 0);
   EXPECT_EQ(corner_changed, 0) << "the table far from the probe is the same picture";
 }

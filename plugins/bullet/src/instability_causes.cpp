@@ -21,7 +21,7 @@ std::string instability_causes(const Model& model, const SubStepPlan& plan, cons
   std::ostringstream out;
   out << "; the plugin chose the sub-step of " << plan.sub_step << " s (at most " << plan.safety
       << " of the body's stable step at rest, " << plan.rest_sub_step << " s";
-  if (plan.squeezed < 1.0) out << ", shortened to " << plan.squeezed << " of that for cells squeezed thin";
+  if (plan.squeezed < 1.0) out << "; cells squeezed thin now need " << plan.squeezed << " of that";
   out << ")";
   if (!model.has_mass_damping) {
     out << "; the tissue has no mass damping (Material::mass_damping = 0): soft tissue needs about "
