@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
+#include "cubespring/bullet/soft_body.h"
 #include "commands.h"
 #include "default_scene.h"
 #include "json_output.h"
@@ -47,6 +48,18 @@ struct RenderTiming {
   Size size;
   double draw_seconds = 0;  // per frame
   double png_seconds = 0;   // per frame
+};
+
+// The organ's sub-steps over the story, by part [s] (bullet::SoftBody::Times).
+struct PhysicsParts {
+  double elastic = 0;
+  double surface = 0;
+  double contact = 0;
+  double planning = 0;
+  long sub_steps = 0;
+  double sum() const { return elastic + surface + contact + planning; }
+  // the contact issue's measure: contact work (the surface refresh included) over the sub-steps
+  double contact_share() const { return sum() > 0 ? (surface + contact) / sum() : 0.0; }
 };
 
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
@@ -118,6 +131,7 @@ int run(const BenchRenderOptions& o) {
   // the story, or its first seconds, as `run` plays it
   const double story = o.seconds > 0 ? o.seconds : scene.duration;
   const int steps = std::max(1, static_cast<int>(std::lround(story / scene.time_step)));
+  const bullet::SoftBody::Times before = world.organ().times();
   const Clock::time_point physics = Clock::now();
   for (int n = 1; n <= steps; ++n) {
     world.place_tools(n * scene.time_step);
@@ -128,6 +142,11 @@ int run(const BenchRenderOptions& o) {
   }
   const double physics_wall = seconds_since(physics);
   const double simulated = steps * scene.time_step;
+  // the organ's sub-steps by part; the rest is Bullet's own step, the tools and the bookkeeping
+  const bullet::SoftBody::Times& after = world.organ().times();
+  const PhysicsParts parts{after.elastic - before.elastic, after.surface - before.surface,
+                           after.contact - before.contact, after.planning - before.planning,
+                           after.sub_steps - before.sub_steps};
 
   namespace fs = std::filesystem;
   std::error_code error;
@@ -153,7 +172,14 @@ int run(const BenchRenderOptions& o) {
     out["organ"] = {{"cells", organ.cells}, {"nodes", organ.nodes}, {"sub_step", organ.sub_step}};
     out["physics"] = {{"simulated_seconds", simulated},
                       {"wall_seconds", physics_wall},
-                      {"real_time_factor", simulated / physics_wall}};
+                      {"real_time_factor", simulated / physics_wall},
+                      {"sub_steps", parts.sub_steps},
+                      {"elastic_seconds", parts.elastic},
+                      {"surface_seconds", parts.surface},
+                      {"contact_seconds", parts.contact},
+                      {"planning_seconds", parts.planning},
+                      {"other_seconds", physics_wall - parts.sum()},
+                      {"contact_share_of_sub_steps", parts.contact_share()}};
     out["render"] = nlohmann::json::array();
     for (const RenderTiming& t : timings) {
       out["render"].push_back({{"width", t.size.width},
@@ -171,6 +197,11 @@ int run(const BenchRenderOptions& o) {
               1e3 * organ.sub_step, cpu_name().c_str());
   std::printf("physics: %.2f simulated s in %.2f wall s: %.2fx real time\n", simulated, physics_wall,
               simulated / physics_wall);
+  std::printf("  %ld sub-steps: elastic %.0f%%, surface %.0f%%, contact %.0f%%, planning %.0f%%, other %.0f%% "
+              "(contact and surface: %.0f%% of the sub-steps)\n",
+              parts.sub_steps, 100 * parts.elastic / physics_wall, 100 * parts.surface / physics_wall,
+              100 * parts.contact / physics_wall, 100 * parts.planning / physics_wall,
+              100 * (physics_wall - parts.sum()) / physics_wall, 100 * parts.contact_share());
   std::printf("%-10s %8s %8s %8s %14s\n", "picture", "draw ms", "png ms", "fps", "fps with png");
   for (const RenderTiming& t : timings) {
     char size[32];

@@ -614,6 +614,20 @@ TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_NEAR(j["physics"]["simulated_seconds"].get<double>(), 0.02, 1e-9);  // 5 steps of the scene's 4 ms
   EXPECT_GT(j["physics"]["real_time_factor"].get<double>(), 0.0);
+  // the organ's sub-steps by part: the world step split into sub-steps of at most the organ's,
+  // each part timed within the physics' wall time
+  const nlohmann::json& physics = j["physics"];
+  const double sub_step = j["organ"]["sub_step"].get<double>();
+  EXPECT_GE(physics["sub_steps"].get<long>(), std::lround(std::ceil(0.02 / sub_step - 1e-9)));
+  double parts = 0.0;
+  for (const char* part : {"elastic_seconds", "surface_seconds", "contact_seconds", "planning_seconds"}) {
+    EXPECT_GT(physics[part].get<double>(), 0.0) << part;
+    parts += physics[part].get<double>();
+  }
+  EXPECT_LE(parts, physics["wall_seconds"].get<double>());
+  EXPECT_NEAR(physics["other_seconds"].get<double>(), physics["wall_seconds"].get<double>() - parts, 1e-12);
+  EXPECT_NEAR(physics["contact_share_of_sub_steps"].get<double>(),
+              (physics["surface_seconds"].get<double>() + physics["contact_seconds"].get<double>()) / parts, 1e-12);
   EXPECT_GT(j["organ"]["cells"].get<int>(), 1000);
   ASSERT_EQ(j["render"].size(), 2u);
   EXPECT_EQ(j["render"][1]["width"], 96);

@@ -4,6 +4,7 @@
 #include "cubespring/bullet/world.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -19,6 +20,12 @@
 namespace cubespring::bullet {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // Collision objects whose broadphase bounds overlap a box.
 class OverlapCollector : public btBroadphaseAabbCallback {
@@ -214,8 +221,10 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   Eigen::Matrix3Xd velocities_before;
   for (int k = 0; remaining > 0; ++k) {
     if (explicit_steps && k % kReplanEvery == 0) {
+      const Clock::time_point planning = Clock::now();
       const double left = step_length - (plan_start + planned * dt);
       const double allowed = body.sub_step_ * compressed_step_factor(body.model_, body.state_.positions);
+      body.times_.planning += seconds_since(planning);
       const int wanted = std::max(1, static_cast<int>(std::ceil(left / allowed - 1e-9)));
       if (wanted != remaining) {
         plan_start += planned * dt;
@@ -235,8 +244,10 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     body.loads_.nodal_forces = user_forces;
     drive_anchors(body, tracks, anchor_track, dt);
     if (held_anchors) velocities_before = body.state_.velocities;
+    Clock::time_point part = Clock::now();
     const StepReport report = body.stepper_->step(body.model_, body.constraints_, body.loads_, body.step_settings_,
                                                   body.state_);
+    body.times_.elastic += seconds_since(part);
     body.last_report_ = report;
     if (!report.ok()) {
       std::string causes;
@@ -250,12 +261,17 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
       break;
     }
     if (held_anchors) report_held_anchors(body, tracks, anchor_track, velocities_before, dt);
+    part = Clock::now();
     body.update_surface();
+    body.times_.surface += seconds_since(part);
 
     // contacts: the surface is moved out of every nearby rigid shape (its vertices; a round
     // tool's whole surface)
+    part = Clock::now();
     projector.resolve(tracks);
     for (RigidTrack& track : tracks) finish_substep(track);
+    body.times_.contact += seconds_since(part);
+    ++body.times_.sub_steps;
     ++planned;
     --remaining;
     const double done = plan_start + planned * dt;

@@ -119,6 +119,16 @@ class SoftBody {
 
   /// The sub-step the world takes for this body [s].
   double sub_step() const { return sub_step_; }
+  /// Wall time the world has spent on this body's sub-steps, by part, since it was created [s]:
+  /// where a scene's physics time goes (`cubespring bench-render` prints it).
+  struct Times {
+    double elastic = 0.0;   ///< the lattice's own step: forces, kick and drift
+    double surface = 0.0;   ///< the contact surface refreshed from the nodes after that step
+    double contact = 0.0;   ///< contacts with rigid bodies found and resolved
+    double planning = 0.0;  ///< the sub-step's length chosen from the cells' thickness
+    long sub_steps = 0;
+  };
+  const Times& times() const { return times_; }
   /// The last sub-step's report; a world step stops advancing a body that went unstable, or
   /// whose step would take more than 10^6 sub-steps (step the world in shorter steps).
   const StepReport& last_report() const { return last_report_; }
@@ -152,6 +162,7 @@ class SoftBody {
   StepSettings step_settings_;
   ContactSettings contact_;
   double sub_step_ = 0.0;
+  Times times_;
   double time_step_safety_ = 0.0;  // SoftBodySettings::time_step_safety
   StepReport last_report_;
   std::string stop_message_;
