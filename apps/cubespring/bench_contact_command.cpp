@@ -29,6 +29,7 @@
 #include "cubespring/voxelize.h"
 #include "json_output.h"
 #include "number_checks.h"
+#include "scene.h"
 
 namespace cubespring::app {
 namespace {
@@ -54,12 +55,10 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& fl
       text, flag, [](double value) { return value > 0.0 && std::isfinite(value); }, "a positive number");
 }
 
+// the scenes' default tissue (nu 0.45, 1060 kg/m^3, 40/s) at the 5 kPa
 Material tissue() {
-  Material material;
+  Material material = default_tissue();
   material.young_modulus = 5e3;
-  material.poisson_ratio = 0.45;
-  material.density = 1060;
-  material.mass_damping = 40;
   return material;
 }
 

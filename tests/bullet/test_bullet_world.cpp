@@ -259,7 +259,6 @@ TEST(BulletWorld, AnUnstableUndampedBodyNamesItsDampingAndAFastTool) {
             std::string::npos)
       << error;
   EXPECT_NE(error.find("a rigid body near it moves at 1000 m/s"), std::string::npos) << error;
-  std::printf("%s\n", error.c_str());
 }
 
 // A kinematic sphere pressed in and dragged at a steady speed, its pose set once per
