@@ -4,12 +4,16 @@
 // area-weighted face-mean displacements.
 #include "cubespring/experiments.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <sstream>
 
 #include "cubespring/constraints.h"
 #include "cubespring/forces.h"
 #include "cubespring/static_solver.h"
+#include "cubespring/strain.h"
 
 namespace cubespring {
 namespace {
@@ -110,6 +114,22 @@ Eigen::Vector3d lattice_shear_moduli(const Model& model) {
   return moduli;
 }
 
+// The z displacement at the centre of the top face: the mean of the top nodes nearest to it (one
+// when both counts of cells across are even, else 2 or 4), which is the bilinear value there.
+double top_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells) {
+  double sum = 0.0;
+  int count = 0;
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3i& index = model.node_grid_index[n];
+    if (index.z() != cells.z()) continue;
+    // twice the distance from the centre in cells: 0 on the centre, 1 next to it (odd counts)
+    if (std::abs(2 * index.x() - cells.x()) > 1 || std::abs(2 * index.y() - cells.y()) > 1) continue;
+    sum += u(2, n);
+    ++count;
+  }
+  return sum / count;
+}
+
 }  // namespace
 
 const char* experiment_name(Experiment experiment) {
@@ -118,15 +138,18 @@ const char* experiment_name(Experiment experiment) {
     case Experiment::kShear: return "shear";
     case Experiment::kInflation: return "inflation";
     case Experiment::kCantilever: return "cantilever";
+    case Experiment::kSelfWeight: return "self-weight";
   }
   return "unknown";
 }
 
 Result<Experiment> parse_experiment(const std::string& name) {
-  for (Experiment e : {Experiment::kElongation, Experiment::kShear, Experiment::kInflation, Experiment::kCantilever}) {
+  for (Experiment e : {Experiment::kElongation, Experiment::kShear, Experiment::kInflation, Experiment::kCantilever,
+                       Experiment::kSelfWeight}) {
     if (name == experiment_name(e)) return e;
   }
-  return Status::error("unknown experiment '" + name + "': expected elongation, shear, inflation or cantilever");
+  return Status::error("unknown experiment '" + name +
+                       "': expected elongation, shear, inflation, cantilever or self-weight");
 }
 
 const char* shear_control_name(ShearControl control) {
@@ -135,9 +158,10 @@ const char* shear_control_name(ShearControl control) {
 
 Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings) {
   if (Status status = check_settings(settings); !status) return status;
-  if (experiment == Experiment::kCantilever && settings.gravity == 0.0) {
+  if ((experiment == Experiment::kCantilever || experiment == Experiment::kSelfWeight) && settings.gravity == 0.0) {
     // no load: no deflection to compare, and 0 / 0 for its error
-    return Status::error("gravity = 0 m/s^2: the cantilever's only load; must be > 0");
+    return Status::error("gravity = 0 m/s^2: the " + std::string(experiment_name(experiment)) +
+                         " experiment's only load; must be > 0");
   }
   LatticeDesc desc = box_lattice(settings.cells, settings.cell_size, settings.material);
   desc.model = settings.model;
@@ -215,6 +239,17 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
       static_settings.initial_load_steps = 4;
       break;
     }
+    case Experiment::kSelfWeight: {
+      const double tolerance = 1e-9 * settings.cell_size.z();
+      if (Status s = constraints.fix_box(model, Eigen::Vector3d(-1e9, -1e9, -tolerance), Eigen::Vector3d(1e9, 1e9, tolerance));
+          !s) {
+        return s;
+      }
+      loads.gravity = Eigen::Vector3d(0.0, 0.0, -settings.gravity);
+      // soft tissue sags by a tenth of its height: ramp the weight in
+      static_settings.initial_load_steps = 8;
+      break;
+    }
   }
 
   result.state = rest_state(model);
@@ -275,6 +310,17 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
       const double shear_coefficient = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
       result.euler_bernoulli = -q * std::pow(size.x(), 4) / (8.0 * e * inertia);
       result.timoshenko = *result.euler_bernoulli - q * size.x() * size.x() / (2.0 * shear_coefficient * g * area);
+      break;
+    }
+    case Experiment::kSelfWeight: {
+      result.top_centre_uz = top_centre_displacement(model, u, cells);
+      const double rest_volume = body_volume(model, model.rest_positions);
+      result.volume_change = body_volume(model, result.state.positions) / rest_volume - 1.0;
+      double least = std::numeric_limits<double>::infinity();
+      for (int c = 0; c < model.num_cells(); ++c) {
+        least = std::min(least, cell_signed_volume(model, result.state.positions, c) / model.rest_cell_volume());
+      }
+      result.least_cell_volume_ratio = least;
       break;
     }
   }

@@ -37,4 +37,35 @@ Eigen::VectorXd node_means_of_cells(const Model& model, const Eigen::VectorXd& c
   return sums.cwiseQuotient(counts);
 }
 
+double trilinear_cell_volume(const Model& model, const Eigen::Matrix3Xd& positions, int cell) {
+  const auto& corners = model.cell_nodes[static_cast<std::size_t>(cell)];
+  // the Gauss points of [-1, 1] at -+1/sqrt(3), mapped to the cell's local [0, 1]
+  const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  double volume = 0.0;
+  for (int point = 0; point < 8; ++point) {
+    const Eigen::Vector3d at(gauss[point & 1], gauss[(point >> 1) & 1], gauss[(point >> 2) & 1]);
+    Eigen::Matrix3d jacobian = Eigen::Matrix3d::Zero();  // dx/dt, t the local coordinates in [0, 1]^3
+    for (int corner = 0; corner < kCornersPerCell; ++corner) {
+      const Eigen::Vector3d x = positions.col(corners[static_cast<std::size_t>(corner)]);
+      for (int axis = 0; axis < 3; ++axis) {
+        // d/dt_axis of the trilinear weight of this corner
+        double weight = corner_side(corner, axis);
+        for (int other = 0; other < 3; ++other) {
+          if (other == axis) continue;
+          weight *= ((corner >> other) & 1) ? at[other] : 1.0 - at[other];
+        }
+        jacobian.col(axis) += weight * x;
+      }
+    }
+    volume += jacobian.determinant() / 8.0;  // each Gauss point weighs 1/8 of the unit cube
+  }
+  return volume;
+}
+
+double body_volume(const Model& model, const Eigen::Matrix3Xd& positions) {
+  double volume = 0.0;
+  for (int cell = 0; cell < model.num_cells(); ++cell) volume += trilinear_cell_volume(model, positions, cell);
+  return volume;
+}
+
 }  // namespace cubespring

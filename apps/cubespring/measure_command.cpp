@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// cubespring measure {elongation|shear|inflation|cantilever}: the paper's virtual experiments.
+// cubespring measure {elongation|shear|inflation|cantilever|self-weight}: the paper's virtual
+// experiments, and a block under its own weight at finite strain.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -135,6 +136,11 @@ nlohmann::json report_json(const ExperimentResult& r) {
     }
     j["nodes"] = std::move(nodes);
   }
+  if (r.top_centre_uz) {
+    j["measured"]["top_centre_uz"] = *r.top_centre_uz;
+    j["measured"]["volume_change"] = *r.volume_change;
+    j["measured"]["least_cell_volume_ratio"] = *r.least_cell_volume_ratio;
+  }
   j["solver"] = {{"load_steps", r.load_steps}, {"newton_iterations", r.newton_iterations}};
   return j;
 }
@@ -160,6 +166,12 @@ void report_table(const ExperimentResult& r) {
                 100 * (*r.tip_deflection / *r.euler_bernoulli - 1));
     std::printf("  %-16s %14.6e  (lattice %+.2f%%)\n", "Timoshenko", *r.timoshenko,
                 100 * (*r.tip_deflection / *r.timoshenko - 1));
+    return;
+  }
+  if (r.top_centre_uz) {
+    std::printf("  %-24s %14.6e m\n", "top centre uz", *r.top_centre_uz);
+    std::printf("  %-24s %+14.4f %%\n", "volume change", 100 * *r.volume_change);
+    std::printf("  %-24s %14.4f\n", "least cell volume ratio", *r.least_cell_volume_ratio);
     return;
   }
   std::printf("  %-16s %14s %14s %12s\n", "quantity", "measured", "expected", "error");
@@ -205,7 +217,9 @@ int run_measure(const MeasureOptions& o) {
   settings.model = parse_cell_model(o.model).value();  // CLI11 checked the name
   settings.exact_bending = o.exact_bending;
   settings.law = parse_cell_law(o.law).value();  // CLI11 checked the name
-  const std::string default_cells = experiment.value() == Experiment::kCantilever ? "16,4,4" : "1,1,1";
+  const std::string default_cells = experiment.value() == Experiment::kCantilever   ? "16,4,4"
+                                    : experiment.value() == Experiment::kSelfWeight ? "12,12,12"
+                                                                                    : "1,1,1";
   Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
   Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
   for (const Status* status : {&cells.status(), &cell_size.status()}) {
@@ -259,18 +273,19 @@ int run_measure(const MeasureOptions& o) {
 Command add_measure_command(CLI::App& app) {
   auto options = std::make_shared<MeasureOptions>();
   CLI::App* cmd = app.add_subcommand("measure", "Run one of the paper's virtual experiments and measure E, nu, G, B "
-                                                "or the cantilever's tip deflection");
-  cmd->add_option("experiment", options->experiment, "elongation, shear, inflation or cantilever")
+                                                "or the cantilever's tip deflection, or a block's sag under its own "
+                                                "weight (self-weight: base bonded, finite strain)");
+  cmd->add_option("experiment", options->experiment, "elongation, shear, inflation, cantilever or self-weight")
       ->required()
-      ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever"}));
+      ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever", "self-weight"}));
   cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->capture_default_str();
   cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->capture_default_str();
   cmd->add_option("--density", options->density, "density [kg/m^3]")->capture_default_str();
-  cmd->add_option("--cells", options->cells, "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4)");
+  cmd->add_option("--cells", options->cells, "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12)");
   cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]")->capture_default_str();
   cmd->add_option("--strain", options->strain, "load as the continuum strain it causes (small deformation)")
       ->capture_default_str();
-  cmd->add_option("--gravity", options->gravity, "cantilever gravity along -z [m/s^2]")->capture_default_str();
+  cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")->capture_default_str();
   cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
       ->check(CLI::IsMember({"displacement", "force"}))
       ->capture_default_str();

@@ -21,6 +21,9 @@ enum class Experiment {
   kShear,       ///< shear: G in the xz plane (and, displacement controlled, in all three planes)
   kInflation,   ///< pressure on every face: B
   kCantilever,  ///< face x = 0 clamped, gravity along -z: tip deflection
+  /// A block under its own weight at finite strain, its base (z = 0) bonded, gravity along -z:
+  /// the top face's centre displacement and the volume change (issue 24's self-weight block).
+  kSelfWeight,
 };
 const char* experiment_name(Experiment experiment);
 Result<Experiment> parse_experiment(const std::string& name);
@@ -41,7 +44,7 @@ struct ExperimentSettings {
   /// Load size as the continuum strain it causes [-]: sigma = E S (elongation), gamma = S (shear),
   /// each side shrinks by S (inflation, P = 3 B S). Not used by the cantilever.
   double strain = 1e-4;
-  double gravity = 9.81;                          ///< cantilever only [m/s^2], along -z
+  double gravity = 9.81;                          ///< cantilever and self-weight [m/s^2], along -z
   ShearControl shear_control = ShearControl::kDisplacement;
 };
 
@@ -69,6 +72,13 @@ struct ExperimentResult {
   /// and what the cell shape gives for them (all equal to G for cubic cells).
   std::optional<Eigen::Vector3d> shear_moduli;
   std::optional<Eigen::Vector3d> expected_shear_moduli;
+  /// Self-weight: the z displacement of the top face's centre [m] (negative when it sags; the
+  /// mean of the 1, 2 or 4 top nodes nearest the centre, the bilinear value there), the body's
+  /// volume change, deformed / rest - 1 (body_volume, strain.h), and its cells' least volume
+  /// ratio (the signed volume of their mean edge vectors over the rest volume).
+  std::optional<double> top_centre_uz;
+  std::optional<double> volume_change;
+  std::optional<double> least_cell_volume_ratio;
   Model model;
   State state;   ///< the static equilibrium
   int load_steps = 0;

@@ -100,6 +100,28 @@ TEST(Cli, LawIsSelectableAndNamed) {
   EXPECT_NE(bad.out.find("--law"), std::string::npos) << bad.out;
 }
 
+// A soft block under its own weight: the sag and volume change in the JSON (the CalculiX
+// comparison is tests/validation/test_self_weight_fem.cpp); the default block is a 12 cm cube.
+TEST(Cli, SelfWeightReportsTheSagAndTheVolumeChange) {
+  const nlohmann::json j = run_json(
+      "measure self-weight --young 5000 --poisson 0.45 --density 1060 --law neo-hookean --cells 4,4,4 --cell-size 0.03");
+  EXPECT_EQ(j["experiment"], "self-weight");
+  EXPECT_EQ(j["inputs"]["law"], "neo-hookean");
+  EXPECT_EQ(j["inputs"]["cells"], nlohmann::json::array({4, 4, 4}));
+  // the 12 cm cube sags about 12 mm (CalculiX: 12.2 mm) and loses about 1.5% of its volume
+  EXPECT_LT(j["measured"]["top_centre_uz"].get<double>(), -0.010);
+  EXPECT_GT(j["measured"]["top_centre_uz"].get<double>(), -0.014);
+  EXPECT_LT(j["measured"]["volume_change"].get<double>(), -0.01);
+  EXPECT_GT(j["measured"]["volume_change"].get<double>(), -0.02);
+  EXPECT_GT(j["measured"]["least_cell_volume_ratio"].get<double>(), 0.5);
+  const ToolRun table = run_tool("measure self-weight --cells 2,2,2");
+  EXPECT_EQ(table.exit_code, 0) << table.out;
+  EXPECT_NE(table.out.find("volume change"), std::string::npos) << table.out;
+  const ToolRun unloaded = run_tool("measure self-weight --cells 2,2,2 --gravity 0");
+  EXPECT_NE(unloaded.exit_code, 0);
+  EXPECT_NE(unloaded.out.find("--gravity"), std::string::npos) << unloaded.out;
+}
+
 // Width and height from a PNG's header (the IHDR chunk follows the 8-byte signature).
 std::pair<int, int> png_size(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");

@@ -186,6 +186,32 @@ TEST(Experiments, SoftCantileverSagsFarAndStaysInEquilibrium) {
   EXPECT_GT(*r.tip_deflection, 10 * -5.649e-3 * 1.0);
 }
 
+// With nu = 0 a block whose base is bonded is in uniaxial stress rho g (H - z) (the base holds no
+// lateral strain back): the top sags rho g H^2 / (2 E) and the volume changes by the mean strain,
+// -rho g H / (2 E); the strain here is 1e-3, so the linear values hold to about that.
+TEST(Experiments, SelfWeightWithoutPoissonEffectIsAUniaxialColumn) {
+  for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
+    ExperimentSettings s;
+    s.material.young_modulus = 1e6;
+    s.material.poisson_ratio = 0.0;
+    s.material.density = 1000;
+    s.law = law;
+    s.cells = {3, 4, 5};
+    s.cell_size = Eigen::Vector3d::Constant(0.02);
+    const ExperimentResult r = run(Experiment::kSelfWeight, s);
+    const double height = 0.1, column = 1000 * 9.81 * height / 1e6;
+    EXPECT_NEAR(*r.top_centre_uz, -column * height / 2, 3e-3 * column * height / 2) << cell_law_name(law);
+    EXPECT_NEAR(*r.volume_change, -column / 2, 3e-3 * column / 2) << cell_law_name(law);
+    EXPECT_GT(*r.least_cell_volume_ratio, 1.0 - 1.01 * column);
+    EXPECT_LT(*r.least_cell_volume_ratio, 1.0);
+  }
+  ExperimentSettings s;
+  s.gravity = 0;
+  const Result<ExperimentResult> unloaded = run_experiment(Experiment::kSelfWeight, s);
+  ASSERT_FALSE(unloaded.ok());
+  EXPECT_NE(unloaded.message().find("gravity"), std::string::npos) << unloaded.message();
+}
+
 TEST(Experiments, RejectBadSettings) {
   ExperimentSettings s = cube(0.3);
   s.cells = {0, 1, 1};

@@ -1,8 +1,11 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The equivalent strain used to colour bodies, against closed forms for affine motions of a
-// lattice of non-cubic cells (so the cell size's axes matter), and its node means.
+// lattice of non-cubic cells (so the cell size's axes matter), and its node means; the volume
+// a body encloses, against the determinant and the divergence theorem.
+#include <array>
 #include <cmath>
+#include <cstdlib>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -80,6 +83,54 @@ TEST(Strain, OneStretchedCellReadsAloneAndItsNodesAverage) {
     const double rest_x = model.rest_positions(0, node);
     const double expected = rest_x < 0.005 ? 0.0 : rest_x < 0.015 ? stretched / 2.0 : stretched;
     EXPECT_NEAR(nodes[node], expected, 1e-12) << "node at x = " << rest_x;
+  }
+}
+
+TEST(Strain, BodyVolumeIsTheDeterminantTimesTheRestVolumeUnderAnAffineMap) {
+  const Model model = non_cubic_box();
+  Eigen::Matrix3d map;
+  map << 1.2, 0.3, -0.1, 0.05, 0.8, 0.2, -0.15, 0.1, 1.1;
+  const Eigen::Matrix3d turned = kRotation * map;
+  const double rest = body_volume(model, model.rest_positions);
+  EXPECT_NEAR(rest, 24 * kCellSize.prod(), 1e-12 * rest);
+  const Eigen::Matrix3Xd moved = (turned * model.rest_positions).colwise() + Eigen::Vector3d(0.3, -0.2, 0.1);
+  EXPECT_NEAR(body_volume(model, moved), turned.determinant() * rest, 1e-12 * rest);
+}
+
+// The volume a cell's six bilinear faces enclose, by the divergence theorem: V = 1/3 sum over
+// faces of the integral of x . (x_u x x_v) du dv, which 2 x 2 Gauss points give exactly (the
+// integrand is of degree 2 in u and in v). Independent of the cell's own Jacobian.
+double enclosed_by_bilinear_faces(const std::array<Eigen::Vector3d, 8>& corner) {
+  // each face's corners at (u, v) = (0, 0), (1, 0), (1, 1), (0, 1), counter-clockwise seen from
+  // outside; corner index bits are x, y, z
+  const int faces[6][4] = {{0, 4, 6, 2}, {1, 3, 7, 5}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 2, 3, 1}, {4, 5, 7, 6}};
+  const double gauss[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+  double volume = 0.0;
+  for (const auto& face : faces) {
+    const Eigen::Vector3d &a = corner[face[0]], &b = corner[face[1]], &c = corner[face[2]], &d = corner[face[3]];
+    for (double u : gauss) {
+      for (double v : gauss) {
+        const Eigen::Vector3d x = (1 - u) * (1 - v) * a + u * (1 - v) * b + u * v * c + (1 - u) * v * d;
+        const Eigen::Vector3d x_u = (1 - v) * (b - a) + v * (c - d);
+        const Eigen::Vector3d x_v = (1 - u) * (d - a) + u * (c - b);
+        volume += x.dot(x_u.cross(x_v)) / 4.0 / 3.0;
+      }
+    }
+  }
+  return volume;
+}
+
+TEST(Strain, TrilinearCellVolumeIsWhatItsBilinearFacesEnclose) {
+  const Model model = test::box_model(Eigen::Vector3i(1, 1, 1), test::notes_material(0.3), kCellSize);
+  std::srand(7);
+  for (int trial = 0; trial < 5; ++trial) {
+    // each corner moved by up to 30% of the cell: the faces warp, the cell is far from affine
+    Eigen::Matrix3Xd x = model.rest_positions + 0.3 * kCellSize.minCoeff() * Eigen::Matrix3Xd::Random(3, 8);
+    std::array<Eigen::Vector3d, 8> corner;
+    for (int k = 0; k < 8; ++k) corner[k] = x.col(model.cell_nodes[0][k]);
+    const double expected = enclosed_by_bilinear_faces(corner);
+    EXPECT_NEAR(trilinear_cell_volume(model, x, 0), expected, 1e-12 * kCellSize.prod()) << "trial " << trial;
+    EXPECT_NEAR(body_volume(model, x), expected, 1e-12 * kCellSize.prod());
   }
 }
 

@@ -85,6 +85,9 @@ std::string check_spec(const BeamReferenceSpec& spec) {
   if (!std::isfinite(spec.gravity)) {
     return "gravity must be finite, got " + format_double(spec.gravity);
   }
+  if (spec.clamped_axis < 0 || spec.clamped_axis > 2) {
+    return "clamped_axis must be 0, 1 or 2, got " + std::to_string(spec.clamped_axis);
+  }
   if (spec.work_dir.empty()) {
     return "work_dir is empty; give a folder for the CalculiX deck and output";
   }
@@ -94,8 +97,9 @@ std::string check_spec(const BeamReferenceSpec& spec) {
 std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   std::string deck;
   deck.reserve(static_cast<std::size_t>(grid.node_count) * 64 + static_cast<std::size_t>(spec.elements.prod()) * 140);
-  deck += "** cantilever beam under gravity, written by cubespring calculix_beam.cpp\n";
-  deck += "*HEADING\ncubespring cantilever beam reference\n";
+  deck += "** box clamped on one face under gravity, written by cubespring calculix_beam.cpp\n";
+  deck += "*HEADING\ncubespring box under gravity, clamped where coordinate " + std::to_string(spec.clamped_axis) +
+          " is 0\n";
 
   // nodes at (a, b, c) * h / 2 on the doubled grid
   const Eigen::Vector3d half_step = spec.size.cwiseQuotient(spec.elements.cast<double>()) / 2;
@@ -135,16 +139,19 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
 
   deck += "*NSET, NSET=NCORNER, GENERATE\n1," + std::to_string(grid.corner_count) + ",1\n";
 
-  // every node of face x = 0, corner and mid-edge alike
+  // every node of the clamped face, corner and mid-edge alike
   deck += "*NSET, NSET=NFIX\n";
   int on_line = 0;
   for (int c = 0; c < grid.fine.z(); ++c) {
     for (int b = 0; b < grid.fine.y(); ++b) {
-      const int node = grid.id[grid.index(0, b, c)];
-      if (node == 0) continue;
-      deck += std::to_string(node);
-      deck += ++on_line == 16 ? ",\n" : ",";
-      if (on_line == 16) on_line = 0;
+      for (int a = 0; a < grid.fine.x(); ++a) {
+        if (Eigen::Vector3i(a, b, c)[spec.clamped_axis] != 0) continue;
+        const int node = grid.id[grid.index(a, b, c)];
+        if (node == 0) continue;
+        deck += std::to_string(node);
+        deck += ++on_line == 16 ? ",\n" : ",";
+        if (on_line == 16) on_line = 0;
+      }
     }
   }
   if (on_line != 0) deck += '\n';

@@ -17,7 +17,8 @@
 
 namespace cubespring::validation {
 
-/// What to solve: a box clamped at x = 0, loaded by its own weight along -z.
+/// What to solve: a box clamped at x = 0 (or at z = 0: clamped_axis), loaded by its own weight
+/// along -z.
 struct BeamReferenceSpec {
   /// Beam spans [0,Lx] x [0,Ly] x [0,Lz] (unit: metre, each > 0).
   Eigen::Vector3d size{0.16, 0.04, 0.04};
@@ -31,6 +32,9 @@ struct BeamReferenceSpec {
   double density = 1000;
   /// Gravitational acceleration, acting along -z (unit: m/s^2, finite).
   double gravity = 9.81;
+  /// The clamped face is where this coordinate is 0 (0: x = 0, the cantilever; 2: z = 0, a block
+  /// bonded at its base). Every node there, corner and mid-edge, is fixed in x, y and z.
+  int clamped_axis = 0;
   /// false: linear elastic, linear static step.
   /// true: NLGEOM with a compressible neo-Hookean material (C10 = G/2,
   /// D1 = 2/K), load ramped with automatic increments.
