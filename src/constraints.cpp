@@ -3,6 +3,7 @@
 #include "cubespring/constraints.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace cubespring {
@@ -23,7 +24,7 @@ Status Constraints::fix_nodes(const Model& model, const std::vector<int>& nodes)
     if (Status status = check_index(node); !status) return status;
   }
   for (int node : nodes) {
-    driven_[node] = 1;
+    driven_[node] = kAllAxes;
     target_.col(node) = model.rest_positions.col(node);
   }
   return {};
@@ -42,8 +43,39 @@ Status Constraints::fix_box(const Model& model, const Eigen::Vector3d& lower, co
 Status Constraints::prescribe_position(int node, const Eigen::Vector3d& position) {
   if (Status status = check_index(node); !status) return status;
   if (!position.allFinite()) return Status::error("node " + std::to_string(node) + ": target position is not finite");
-  driven_[node] = 1;
+  driven_[node] = kAllAxes;
   target_.col(node) = position;
+  return {};
+}
+
+Status Constraints::prescribe_axis_position(int node, int axis, double coordinate) {
+  if (Status status = check_index(node); !status) return status;
+  if (axis < 0 || axis > 2) return Status::error("axis " + std::to_string(axis) + " is out of range: 0, 1 or 2");
+  if (!std::isfinite(coordinate)) {
+    return Status::error("node " + std::to_string(node) + ": target coordinate is not finite");
+  }
+  driven_[node] |= static_cast<std::uint8_t>(1u << axis);
+  target_(axis, node) = coordinate;
+  return {};
+}
+
+Status Constraints::prescribe_box_axis_displacement(const Model& model, const Eigen::Vector3d& lower,
+                                                    const Eigen::Vector3d& upper, int axis, double displacement) {
+  if (axis < 0 || axis > 2) return Status::error("axis " + std::to_string(axis) + " is out of range: 0, 1 or 2");
+  if (!std::isfinite(displacement)) {
+    return Status::error("displacement " + std::to_string(displacement) + " m is not finite");
+  }
+  const std::vector<int> nodes = model.nodes_in_box(lower, upper);
+  if (nodes.empty()) {
+    std::ostringstream message;
+    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
+    return Status::error(message.str());
+  }
+  for (int node : nodes) {
+    if (Status status = prescribe_axis_position(node, axis, model.rest_positions(axis, node) + displacement); !status) {
+      return status;
+    }
+  }
   return {};
 }
 
@@ -73,7 +105,7 @@ Status Constraints::release(int node) {
 }
 
 int Constraints::num_driven() const {
-  return static_cast<int>(std::count(driven_.begin(), driven_.end(), std::uint8_t{1}));
+  return static_cast<int>(driven_.size() - std::count(driven_.begin(), driven_.end(), std::uint8_t{0}));
 }
 
 }  // namespace cubespring

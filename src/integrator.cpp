@@ -227,6 +227,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
       if (n < constraints.num_nodes() && constraints.is_driven(n)) {
         const Eigen::Vector3d velocity = (constraints.target(n) - state.positions.col(n)) / dt;
         for (int a = 0; a < 3; ++a) {
+          if (((constraints.driven_axes(n) >> a) & 1) == 0) continue;
           driven[3 * n + a] = 1;
           guess[3 * n + a] = velocity[a];
         }

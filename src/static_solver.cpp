@@ -136,9 +136,11 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   Problem problem{model, constraints, loads, std::vector<std::uint8_t>(3 * num_nodes, 0)};
   Eigen::Matrix3Xd target = model.rest_positions;
   for (int n = 0; n < constraints.num_nodes(); ++n) {
-    if (!constraints.is_driven(n)) continue;
-    for (int a = 0; a < 3; ++a) problem.driven[3 * n + a] = 1;
-    target.col(n) = constraints.target(n);
+    for (int a = 0; a < 3; ++a) {
+      if (((constraints.driven_axes(n) >> a) & 1) == 0) continue;
+      problem.driven[3 * n + a] = 1;
+      target(a, n) = constraints.target(n)[a];
+    }
   }
   // the force scale that residuals are measured against
   double reference_force = (loads.gravity.norm() * model.mass).norm();
@@ -168,8 +170,8 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   while (done < 1.0) {
     const double next = std::min(1.0, done + increment);
     Eigen::Matrix3Xd trial = x;
-    for (int n = 0; n < num_nodes; ++n) {
-      if (problem.driven[3 * n]) trial.col(n) = start_driven.col(n) + next * (target.col(n) - start_driven.col(n));
+    for (int i = 0; i < 3 * num_nodes; ++i) {
+      if (problem.driven[i]) trial(i) = start_driven(i) + next * (target(i) - start_driven(i));
     }
     if (newton(problem, scaled_loads(loads, next), reference_force, settings, *assembler, trial, report)) {
       x = trial;

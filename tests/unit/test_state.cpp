@@ -1,5 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -130,6 +131,61 @@ TEST(Constraints, DrivenNodesFollowTheirTarget) {
   ASSERT_TRUE(stepper.step(model, constraints, Loads{}, settings, state).ok());
   EXPECT_DOUBLE_EQ(state.positions(0, node), model.rest_positions(0, node) + 1e-3);
   EXPECT_NEAR(state.velocities(0, node), 1e-3 / 1e-5, 1e-9);
+}
+
+// A frictionless support: the face x = 0 held along x only, its nodes free to slide in y and z,
+// so a bar pulled along x contracts laterally as a free bar does (a clamped face would hold the
+// contraction back at that end). One corner pinned and one more node held along z take out the
+// rigid motions the support leaves; the homogeneous stretch satisfies them.
+TEST(Constraints, AFrictionlessSupportHoldsOneComponentAndLetsTheOthersSlide) {
+  const Model model = test::box_model({4, 2, 2}, test::notes_material(0.3));
+  Constraints constraints(model);
+  const double strain = 1e-4, length = 0.04, width = 0.02;
+  ASSERT_TRUE(constraints.prescribe_box_axis_displacement(model, {-1, -1, -1}, {1e-9, 1, 1}, 0, 0.0).ok());
+  ASSERT_TRUE(constraints.prescribe_box_axis_displacement(model, {length - 1e-9, -1, -1}, {1, 1, 1}, 0,
+                                                          strain * length).ok());
+  const int corner = model.node_at({0, 0, 0});
+  const int beside = model.node_at({0, 2, 0});
+  ASSERT_TRUE(constraints.prescribe_axis_position(corner, 1, model.rest_positions(1, corner)).ok());
+  ASSERT_TRUE(constraints.prescribe_axis_position(corner, 2, model.rest_positions(2, corner)).ok());
+  ASSERT_TRUE(constraints.prescribe_axis_position(beside, 2, model.rest_positions(2, beside)).ok());
+  EXPECT_EQ(constraints.driven_axes(corner), Constraints::kAllAxes);
+  EXPECT_EQ(constraints.driven_axes(beside), 0b101);
+  EXPECT_EQ(constraints.driven_axes(model.node_at({0, 1, 1})), 0b001);
+  EXPECT_EQ(constraints.num_driven(), 18);
+  EXPECT_FALSE(constraints.prescribe_axis_position(corner, 3, 0.0).ok());
+  EXPECT_FALSE(constraints.prescribe_box_axis_displacement(model, {-1, -1, -1}, {1, 1, 1}, 0, NAN).ok());
+
+  State state = rest_state(model);
+  ASSERT_TRUE(solve_static(model, constraints, Loads{}, StaticSettings{}, state).converged);
+  // the supported face's far corner slid inward by the lateral strain, as the free end's did
+  for (const int x : {0, 4}) {
+    const int far = model.node_at({x, 2, 2});
+    const double lateral = (state.positions(1, far) - model.rest_positions(1, far)) / width;
+    EXPECT_NEAR(lateral, -0.3 * strain, 0.02 * 0.3 * strain) << "x index " << x;
+    EXPECT_NEAR(state.positions(0, far) - model.rest_positions(0, far), strain * length * x / 4, 1e-12);
+  }
+}
+
+// An explicit step moves a node driven along z to its target along z only; gravity along x moves
+// it along x as it moves its free neighbours.
+TEST(Constraints, ANodeDrivenAlongOneAxisIsFreeAlongTheOthers) {
+  const Model model = test::box_model({2, 1, 1}, test::notes_material(0.3));
+  Constraints constraints(model);
+  const int node = model.node_at({2, 0, 0});
+  ASSERT_TRUE(constraints.prescribe_axis_position(node, 2, model.rest_positions(2, node) + 1e-6).ok());
+  Loads loads;
+  loads.gravity = {-9.81, 0, 0};
+  State state = rest_state(model);
+  StepSettings settings;
+  settings.time_step = 1e-5;
+  Stepper stepper(model);
+  ASSERT_TRUE(stepper.step(model, constraints, loads, settings, state).ok());
+  EXPECT_DOUBLE_EQ(state.positions(2, node), model.rest_positions(2, node) + 1e-6);
+  EXPECT_NEAR(state.velocities(2, node), 1e-6 / 1e-5, 1e-9);
+  const int free_node = model.node_at({2, 1, 1});
+  EXPECT_LT(state.positions(0, node), model.rest_positions(0, node));
+  EXPECT_NEAR(state.velocities(0, node), state.velocities(0, free_node), 1e-3 * std::abs(state.velocities(0, free_node)));
 }
 
 }  // namespace
