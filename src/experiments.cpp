@@ -130,7 +130,33 @@ double top_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, co
   return sum / count;
 }
 
+// The self-weight block's base (z = 0): bonded, or on a frictionless floor. On the floor the base
+// nodes are held along z only; the node nearest the base's centre also along x and y, and the one
+// at the end of its x-row along y, which takes out the sliding and turning the floor leaves. Those
+// three components carry no force: nothing else pushes the block sideways or turns it.
+Status support_base(const Model& model, const Eigen::Vector3i& cells, Support support, Constraints& constraints) {
+  const double tolerance = 1e-9 * model.cell_size.z();
+  const Eigen::Vector3d lower(-1e9, -1e9, -tolerance), upper(1e9, 1e9, tolerance);
+  if (support == Support::kBonded) return constraints.fix_box(model, lower, upper);
+  if (Status s = constraints.prescribe_box_axis_displacement(model, lower, upper, 2, 0.0); !s) return s;
+  const int centre = model.node_at({cells.x() / 2, cells.y() / 2, 0});
+  const int row_end = model.node_at({cells.x(), cells.y() / 2, 0});
+  for (const int axis : {0, 1}) {
+    if (Status s = constraints.prescribe_axis_position(centre, axis, model.rest_positions(axis, centre)); !s) return s;
+  }
+  return constraints.prescribe_axis_position(row_end, 1, model.rest_positions(1, row_end));
+}
+
 }  // namespace
+
+const char* support_name(Support support) { return support == Support::kBonded ? "bonded" : "floor"; }
+
+Result<Support> parse_support(const std::string& name) {
+  for (Support support : {Support::kBonded, Support::kFloor}) {
+    if (name == support_name(support)) return support;
+  }
+  return Status::error("unknown support '" + name + "': expected bonded or floor");
+}
 
 const char* experiment_name(Experiment experiment) {
   switch (experiment) {
@@ -240,11 +266,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
       break;
     }
     case Experiment::kSelfWeight: {
-      const double tolerance = 1e-9 * settings.cell_size.z();
-      if (Status s = constraints.fix_box(model, Eigen::Vector3d(-1e9, -1e9, -tolerance), Eigen::Vector3d(1e9, 1e9, tolerance));
-          !s) {
-        return s;
-      }
+      if (Status s = support_base(model, cells, settings.support, constraints); !s) return s;
       loads.gravity = Eigen::Vector3d(0.0, 0.0, -settings.gravity);
       // soft tissue sags by a tenth of its height: ramp the weight in
       static_settings.initial_load_steps = 8;

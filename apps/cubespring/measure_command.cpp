@@ -34,6 +34,7 @@ struct MeasureOptions {
   std::string control = "displacement";
   std::string model = "baudet2007";
   std::string law = "springs";
+  std::string support = "bonded";
   ExactBendingParameters exact_bending;
   bool json = false;
   std::string png;        // empty: no picture
@@ -110,6 +111,7 @@ nlohmann::json report_json(const ExperimentResult& r) {
                  {"model", cell_model_name(s.model)},
                  {"law", cell_law_name(s.law)}};
   if (r.experiment == Experiment::kShear) j["inputs"]["control"] = shear_control_name(s.shear_control);
+  if (r.experiment == Experiment::kSelfWeight) j["inputs"]["support"] = support_name(s.support);
   if (s.model == CellModel::kExactBending) {
     j["inputs"]["edge_fraction"] = s.exact_bending.edge_fraction;
     j["inputs"]["twist_factor"] = s.exact_bending.twist_factor;
@@ -159,6 +161,7 @@ void report_table(const ExperimentResult& r) {
               s.cells.x(), s.cells.y(), s.cells.z(), s.cell_size.x(), s.cell_size.y(), s.cell_size.z(),
               cell_model_name(s.model), cell_law_name(s.law));
   if (r.experiment == Experiment::kShear) std::printf("shear control: %s\n", shear_control_name(s.shear_control));
+  if (r.experiment == Experiment::kSelfWeight) std::printf("support: %s\n", support_name(s.support));
   if (r.tip_deflection) {
     std::printf("  %-16s %14s\n", "", "tip [m]");
     std::printf("  %-16s %14.6e\n", "lattice", *r.tip_deflection);
@@ -217,6 +220,7 @@ int run_measure(const MeasureOptions& o) {
   settings.model = parse_cell_model(o.model).value();  // CLI11 checked the name
   settings.exact_bending = o.exact_bending;
   settings.law = parse_cell_law(o.law).value();  // CLI11 checked the name
+  settings.support = parse_support(o.support).value();
   const std::string default_cells = experiment.value() == Experiment::kCantilever   ? "16,4,4"
                                     : experiment.value() == Experiment::kSelfWeight ? "12,12,12"
                                                                                     : "1,1,1";
@@ -288,6 +292,10 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")->capture_default_str();
   cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
       ->check(CLI::IsMember({"displacement", "force"}))
+      ->capture_default_str();
+  cmd->add_option("--support", options->support,
+                  "self-weight: the base bonded, or on a frictionless floor (held along z only)")
+      ->check(CLI::IsMember({"bonded", "floor"}))
       ->capture_default_str();
   cmd->add_option("--model", options->model, "cell model: baudet2007 (the paper) or exact-bending")
       ->check(CLI::IsMember({"baudet2007", "exact-bending"}))

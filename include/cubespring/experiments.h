@@ -21,8 +21,8 @@ enum class Experiment {
   kShear,       ///< shear: G in the xz plane (and, displacement controlled, in all three planes)
   kInflation,   ///< pressure on every face: B
   kCantilever,  ///< face x = 0 clamped, gravity along -z: tip deflection
-  /// A block under its own weight at finite strain, its base (z = 0) bonded, gravity along -z:
-  /// the top face's centre displacement and the volume change (issue 24's self-weight block).
+  /// A block under its own weight at finite strain, its base (z = 0) bonded or on a frictionless
+  /// floor (Support), gravity along -z: the top face's centre displacement and the volume change.
   kSelfWeight,
 };
 const char* experiment_name(Experiment experiment);
@@ -33,6 +33,15 @@ enum class ShearControl {
   kForce,         ///< the paper's way: opposite tangential tractions, body free
 };
 const char* shear_control_name(ShearControl control);
+
+/// How the self-weight block stands.
+enum class Support {
+  kBonded,  ///< its base bonded: every base node held
+  kFloor,   ///< on a frictionless floor: the base nodes held along z only (two of them also in the
+            ///< plane, against sliding and turning: those take no force)
+};
+const char* support_name(Support support);
+Result<Support> parse_support(const std::string& name);
 
 struct ExperimentSettings {
   Material material;
@@ -46,6 +55,7 @@ struct ExperimentSettings {
   double strain = 1e-4;
   double gravity = 9.81;                          ///< cantilever and self-weight [m/s^2], along -z
   ShearControl shear_control = ShearControl::kDisplacement;
+  Support support = Support::kBonded;             ///< self-weight only
 };
 
 /// Continuum values and what the lattice gave; a quantity the experiment does not measure is empty.

@@ -114,6 +114,13 @@ TEST(Cli, SelfWeightReportsTheSagAndTheVolumeChange) {
   EXPECT_LT(j["measured"]["volume_change"].get<double>(), -0.01);
   EXPECT_GT(j["measured"]["volume_change"].get<double>(), -0.02);
   EXPECT_GT(j["measured"]["least_cell_volume_ratio"].get<double>(), 0.5);
+  EXPECT_EQ(j["inputs"]["support"], "bonded");
+  // on a frictionless floor the base spreads: it sags further (CalculiX: 13.9 mm)
+  const nlohmann::json floor = run_json(
+      "measure self-weight --young 5000 --poisson 0.45 --density 1060 --law neo-hookean --cells 4,4,4 --cell-size 0.03 "
+      "--support floor");
+  EXPECT_EQ(floor["inputs"]["support"], "floor");
+  EXPECT_LT(floor["measured"]["top_centre_uz"].get<double>(), j["measured"]["top_centre_uz"].get<double>());
   const ToolRun table = run_tool("measure self-weight --cells 2,2,2");
   EXPECT_EQ(table.exit_code, 0) << table.out;
   EXPECT_NE(table.out.find("volume change"), std::string::npos) << table.out;

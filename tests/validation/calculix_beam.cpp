@@ -3,9 +3,11 @@
 
 #include "calculix_beam.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
 #include <utility>
 
 #include "calculix_common.h"
@@ -155,7 +157,28 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
     }
   }
   if (on_line != 0) deck += '\n';
-  deck += "*BOUNDARY\nNFIX,1,3\n";
+  if (!spec.sliding) {
+    deck += "*BOUNDARY\nNFIX,1,3\n";
+  } else {
+    // the face's own axis for every node; the centre node and the end of its row hold the rest
+    const int normal = spec.clamped_axis, first = (normal + 1) % 3, second = (normal + 2) % 3;
+    const int p = std::min(first, second), q = std::max(first, second);
+    Eigen::Vector3i centre = Eigen::Vector3i::Zero();
+    centre[p] = spec.elements[p];
+    centre[q] = spec.elements[q];
+    Eigen::Vector3i row_end = centre;
+    row_end[p] = 2 * spec.elements[p];
+    const int centre_node = grid.id[grid.index(centre.x(), centre.y(), centre.z())];
+    const int row_end_node = grid.id[grid.index(row_end.x(), row_end.y(), row_end.z())];
+    if (centre_node == 0 || row_end_node == 0) {
+      throw std::invalid_argument("sliding: no node at the centre of the clamped face (odd element counts)");
+    }
+    const std::string n = std::to_string(normal + 1), a = std::to_string(p + 1), b = std::to_string(q + 1);
+    deck += "*BOUNDARY\nNFIX," + n + "," + n + "\n";
+    deck += std::to_string(centre_node) + "," + a + "," + a + "\n";
+    deck += std::to_string(centre_node) + "," + b + "," + b + "\n";
+    deck += std::to_string(row_end_node) + "," + b + "," + b + "\n";
+  }
 
   deck += "*MATERIAL, NAME=BEAM_MATERIAL\n";
   const double e = spec.young_modulus;

@@ -35,6 +35,11 @@ struct BeamReferenceSpec {
   /// The clamped face is where this coordinate is 0 (0: x = 0, the cantilever; 2: z = 0, a block
   /// bonded at its base). Every node there, corner and mid-edge, is fixed in x, y and z.
   int clamped_axis = 0;
+  /// The clamped face holds its nodes along clamped_axis only (a frictionless support); the node
+  /// at the face's centre is also held along the other two axes, and the node at the end of its
+  /// row along the first other axis on the second, against sliding and turning (they carry no
+  /// force). Needs a node at the face's centre (even element counts across it).
+  bool sliding = false;
   /// false: linear elastic, linear static step.
   /// true: NLGEOM with a compressible neo-Hookean material (C10 = G/2,
   /// D1 = 2/K), load ramped with automatic increments.

@@ -39,11 +39,16 @@ std::vector<SelfWeightRow> read_self_weight_rows(const std::string& path) {
   std::string line;
   while (std::getline(in, line)) {
     if (line.empty() || line[0] == '#' || line.rfind("young", 0) == 0) continue;
+    // young_modulus_Pa,support,elements_per_side,top_centre_uz_m,volume_change
     std::istringstream fields(line);
     SelfWeightRow row;
+    std::string support;
     char comma = 0;
-    fields >> row.young_modulus >> comma >> row.elements >> comma >> row.top_centre_uz >> comma >> row.volume_change;
-    if (!fields) {
+    fields >> row.young_modulus >> comma;
+    std::getline(fields, support, ',');
+    row.floor = support == "floor";
+    fields >> row.elements >> comma >> row.top_centre_uz >> comma >> row.volume_change;
+    if (!fields || (support != "floor" && support != "bonded")) {
       ADD_FAILURE() << path << ": cannot read the line '" << line << "'";
       continue;
     }
@@ -52,7 +57,8 @@ std::vector<SelfWeightRow> read_self_weight_rows(const std::string& path) {
   return rows;
 }
 
-SelfWeightRow solve_self_weight_with_calculix(double young_modulus, int elements, const std::string& work_dir) {
+SelfWeightRow solve_self_weight_with_calculix(double young_modulus, bool floor, int elements,
+                                              const std::string& work_dir) {
   BeamReferenceSpec spec;
   spec.size = Eigen::Vector3d::Constant(kCubeSide);
   spec.elements = Eigen::Vector3i::Constant(elements);
@@ -63,11 +69,13 @@ SelfWeightRow solve_self_weight_with_calculix(double young_modulus, int elements
   spec.nonlinear = true;
   spec.neo_hookean = true;
   spec.clamped_axis = 2;
+  spec.sliding = floor;
   spec.work_dir = work_dir;
   const BeamResult result = compute_beam_reference(spec);
   if (!result.reference) throw std::runtime_error(result.error);
   SelfWeightRow row;
   row.young_modulus = young_modulus;
+  row.floor = floor;
   row.elements = elements;
   row.top_centre_uz = result.reference->displacement_at({kCubeSide / 2, kCubeSide / 2, kCubeSide}).value().z();
   row.volume_change = fe_volume_change(*result.reference);
