@@ -14,6 +14,7 @@
 #include "cubespring/forces.h"
 #include "cubespring/static_solver.h"
 #include "cubespring/strain.h"
+#include "finite_strain_experiments.h"
 
 namespace cubespring {
 namespace {
@@ -44,7 +45,7 @@ double face_strain(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::V
           face_mean(u, face_weights(model, axis, 0, cells[axis]), axis)) / length;
 }
 
-Status check_settings(const ExperimentSettings& s) {
+Status check_settings(Experiment experiment, const ExperimentSettings& s) {
   if (s.cells.minCoeff() < 1) {
     std::ostringstream message;
     message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z()
@@ -58,7 +59,21 @@ Status check_settings(const ExperimentSettings& s) {
     message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z() << ": " << size.message();
     return Status::error(message.str());
   }
-  if (!std::isfinite(s.strain) || s.strain <= 0.0 || s.strain > 0.5) {
+  if (is_finite_strain_experiment(experiment)) {
+    const bool shear = experiment == Experiment::kSimpleShear;
+    if (!std::isfinite(s.strain) || s.strain == 0.0 || s.strain < (shear ? -1.0 : -0.6) || s.strain > 1.0) {
+      std::ostringstream message;
+      message << "strain = " << s.strain << ": " << experiment_name(experiment) << " takes "
+              << (shear ? "a shear gamma in [-1, 1]" : experiment == Experiment::kUniaxial
+                                                           ? "a nominal strain (stretch - 1) in [-0.6, 1]"
+                                                           : "a volume change (J - 1) in [-0.6, 1]")
+              << ", not 0";
+      return Status::error(message.str());
+    }
+    if (s.curve_points < 1 || s.curve_points > 1000) {
+      return Status::error("curve_points = " + std::to_string(s.curve_points) + ": must be 1 to 1000");
+    }
+  } else if (!std::isfinite(s.strain) || s.strain <= 0.0 || s.strain > 0.5) {
     std::ostringstream message;
     message << "strain = " << s.strain << ": must be > 0 and <= 0.5";
     return Status::error(message.str());
@@ -130,21 +145,14 @@ double top_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, co
   return sum / count;
 }
 
-// The self-weight block's base (z = 0): bonded, or on a frictionless floor. On the floor the base
-// nodes are held along z only; the node nearest the base's centre also along x and y, and the one
-// at the end of its x-row along y, which takes out the sliding and turning the floor leaves. Those
-// three components carry no force: nothing else pushes the block sideways or turns it.
+// The self-weight block's base (z = 0): bonded, or on a frictionless floor, which holds the base
+// nodes along z only (and two of them against sliding and turning: hold_face_in_plane).
 Status support_base(const Model& model, const Eigen::Vector3i& cells, Support support, Constraints& constraints) {
   const double tolerance = 1e-9 * model.cell_size.z();
   const Eigen::Vector3d lower(-1e9, -1e9, -tolerance), upper(1e9, 1e9, tolerance);
   if (support == Support::kBonded) return constraints.fix_box(model, lower, upper);
   if (Status s = constraints.prescribe_box_axis_displacement(model, lower, upper, 2, 0.0); !s) return s;
-  const int centre = model.node_at({cells.x() / 2, cells.y() / 2, 0});
-  const int row_end = model.node_at({cells.x(), cells.y() / 2, 0});
-  for (const int axis : {0, 1}) {
-    if (Status s = constraints.prescribe_axis_position(centre, axis, model.rest_positions(axis, centre)); !s) return s;
-  }
-  return constraints.prescribe_axis_position(row_end, 1, model.rest_positions(1, row_end));
+  return hold_face_in_plane(model, cells, 2, constraints);
 }
 
 }  // namespace
@@ -165,17 +173,22 @@ const char* experiment_name(Experiment experiment) {
     case Experiment::kInflation: return "inflation";
     case Experiment::kCantilever: return "cantilever";
     case Experiment::kSelfWeight: return "self-weight";
+    case Experiment::kUniaxial: return "uniaxial";
+    case Experiment::kSimpleShear: return "simple-shear";
+    case Experiment::kHydrostatic: return "hydrostatic";
   }
   return "unknown";
 }
 
 Result<Experiment> parse_experiment(const std::string& name) {
   for (Experiment e : {Experiment::kElongation, Experiment::kShear, Experiment::kInflation, Experiment::kCantilever,
-                       Experiment::kSelfWeight}) {
+                       Experiment::kSelfWeight, Experiment::kUniaxial, Experiment::kSimpleShear,
+                       Experiment::kHydrostatic}) {
     if (name == experiment_name(e)) return e;
   }
   return Status::error("unknown experiment '" + name +
-                       "': expected elongation, shear, inflation, cantilever or self-weight");
+                       "': expected elongation, shear, inflation, cantilever, self-weight, uniaxial, simple-shear or "
+                       "hydrostatic");
 }
 
 const char* shear_control_name(ShearControl control) {
@@ -183,7 +196,7 @@ const char* shear_control_name(ShearControl control) {
 }
 
 Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings) {
-  if (Status status = check_settings(settings); !status) return status;
+  if (Status status = check_settings(experiment, settings); !status) return status;
   if ((experiment == Experiment::kCantilever || experiment == Experiment::kSelfWeight) && settings.gravity == 0.0) {
     // no load: no deflection to compare, and 0 / 0 for its error
     return Status::error("gravity = 0 m/s^2: the " + std::string(experiment_name(experiment)) +
@@ -207,6 +220,13 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
   const double e = material.young_modulus;
   const double g = shear_modulus(material);
   const double b = bulk_modulus(material);
+
+  if (is_finite_strain_experiment(experiment)) {
+    Result<std::vector<CurvePoint>> curve = finite_strain_curve(experiment, model, settings, result.state);
+    if (!curve) return curve.status();
+    result.curve = std::move(curve).value();
+    return result;
+  }
 
   Constraints constraints(model);
   Loads loads;
@@ -272,6 +292,10 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
       static_settings.initial_load_steps = 8;
       break;
     }
+    case Experiment::kUniaxial:
+    case Experiment::kSimpleShear:
+    case Experiment::kHydrostatic:
+      break;  // finite_strain_curve's, above
   }
 
   result.state = rest_state(model);
@@ -345,6 +369,10 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
       result.least_cell_volume_ratio = least;
       break;
     }
+    case Experiment::kUniaxial:
+    case Experiment::kSimpleShear:
+    case Experiment::kHydrostatic:
+      break;
   }
   return result;
 }

@@ -1,11 +1,15 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// cubespring measure {elongation|shear|inflation|cantilever|self-weight}: the paper's virtual
-// experiments, and a block under its own weight at finite strain.
+// cubespring measure {elongation|shear|inflation|cantilever|self-weight|uniaxial|simple-shear|
+// hydrostatic}: the paper's virtual experiments, and finite-strain ones (a block under its own
+// weight, stress-strain curves against the neo-Hookean law's closed form).
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -30,6 +34,8 @@ struct MeasureOptions {
   std::string cells;      // empty: the experiment's default
   std::string cell_size = "0.01";
   double strain = 1e-4;
+  bool strain_given = false;  // else the finite-strain experiments take their own default
+  int points = 8;
   double gravity = 9.81;
   std::string control = "displacement";
   std::string model = "baudet2007";
@@ -97,6 +103,20 @@ nlohmann::json to_json(const Moduli& m) {
 
 nlohmann::json planes(const Eigen::Vector3d& v) { return {{"yz", v[0]}, {"xz", v[1]}, {"xy", v[2]}}; }
 
+// (measured - expected) / |expected|; 0 when both are 0.
+double relative_difference(double measured, double expected) {
+  return expected == 0.0 ? (measured == 0.0 ? 0.0 : measured) : (measured - expected) / std::abs(expected);
+}
+
+// The largest |relative difference| along a curve.
+double largest_curve_error(const std::vector<CurvePoint>& curve) {
+  double largest = 0.0;
+  for (const CurvePoint& point : curve) {
+    largest = std::max(largest, std::abs(relative_difference(point.stress, point.expected)));
+  }
+  return largest;
+}
+
 nlohmann::json report_json(const ExperimentResult& r) {
   const ExperimentSettings& s = r.settings;
   nlohmann::json j;
@@ -138,6 +158,21 @@ nlohmann::json report_json(const ExperimentResult& r) {
     }
     j["nodes"] = std::move(nodes);
   }
+  if (!r.curve.empty()) {
+    nlohmann::json curve = nlohmann::json::array();
+    for (const CurvePoint& point : r.curve) {
+      curve.push_back({{"strain", point.strain},
+                       {"stress", point.stress},
+                       {"expected", point.expected},
+                       {"error", relative_difference(point.stress, point.expected)}});
+    }
+    j["curve"] = std::move(curve);
+    j["inputs"]["points"] = s.curve_points;
+    j["measured"]["stress"] = r.curve.back().stress;
+    j["expected"]["stress"] = r.curve.back().expected;
+    j["error"]["stress"] = relative_difference(r.curve.back().stress, r.curve.back().expected);
+    j["error"]["largest_stress"] = largest_curve_error(r.curve);
+  }
   if (r.top_centre_uz) {
     j["measured"]["top_centre_uz"] = *r.top_centre_uz;
     j["measured"]["volume_change"] = *r.volume_change;
@@ -169,6 +204,19 @@ void report_table(const ExperimentResult& r) {
                 100 * (*r.tip_deflection / *r.euler_bernoulli - 1));
     std::printf("  %-16s %14.6e  (lattice %+.2f%%)\n", "Timoshenko", *r.timoshenko,
                 100 * (*r.tip_deflection / *r.timoshenko - 1));
+    return;
+  }
+  if (!r.curve.empty()) {
+    const char* stress = r.experiment == Experiment::kSimpleShear ? "P_xz [Pa]" : "P_xx [Pa]";
+    const char* strain = r.experiment == Experiment::kUniaxial      ? "stretch - 1"
+                         : r.experiment == Experiment::kSimpleShear ? "gamma"
+                                                                    : "J - 1";
+    std::printf("  %12s %16s %16s %10s\n", strain, stress, "neo-Hookean", "error");
+    for (const CurvePoint& point : r.curve) {
+      std::printf("  %12.4f %16.6g %16.6g %+9.3f%%\n", point.strain, point.stress, point.expected,
+                  100 * relative_difference(point.stress, point.expected));
+    }
+    std::printf("  largest error %.3f%% of the closed form\n", 100 * largest_curve_error(r.curve));
     return;
   }
   if (r.top_centre_uz) {
@@ -215,15 +263,25 @@ int run_measure(const MeasureOptions& o) {
   settings.material.poisson_ratio = o.poisson;
   settings.material.density = o.density;
   settings.strain = o.strain;
+  settings.curve_points = o.points;
   settings.gravity = o.gravity;
   settings.shear_control = o.control == "force" ? ShearControl::kForce : ShearControl::kDisplacement;
   settings.model = parse_cell_model(o.model).value();  // CLI11 checked the name
   settings.exact_bending = o.exact_bending;
   settings.law = parse_cell_law(o.law).value();  // CLI11 checked the name
   settings.support = parse_support(o.support).value();
-  const std::string default_cells = experiment.value() == Experiment::kCantilever   ? "16,4,4"
-                                    : experiment.value() == Experiment::kSelfWeight ? "12,12,12"
-                                                                                    : "1,1,1";
+  const Experiment chosen = experiment.value();
+  const std::string default_cells = chosen == Experiment::kCantilever   ? "16,4,4"
+                                    : chosen == Experiment::kSelfWeight ? "12,12,12"
+                                    : chosen == Experiment::kUniaxial || chosen == Experiment::kSimpleShear ||
+                                            chosen == Experiment::kHydrostatic
+                                        ? "4,4,4"
+                                        : "1,1,1";
+  if (!o.strain_given) {  // what tissue sees: 40% compression, a shear of 0.5, a tenth of its volume
+    if (chosen == Experiment::kUniaxial) settings.strain = -0.4;
+    if (chosen == Experiment::kSimpleShear) settings.strain = 0.5;
+    if (chosen == Experiment::kHydrostatic) settings.strain = -0.1;
+  }
   Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
   Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
   for (const Status* status : {&cells.status(), &cell_size.status()}) {
@@ -277,17 +335,27 @@ int run_measure(const MeasureOptions& o) {
 Command add_measure_command(CLI::App& app) {
   auto options = std::make_shared<MeasureOptions>();
   CLI::App* cmd = app.add_subcommand("measure", "Run one of the paper's virtual experiments and measure E, nu, G, B "
-                                                "or the cantilever's tip deflection, or a block's sag under its own "
-                                                "weight (self-weight: base bonded, finite strain)");
-  cmd->add_option("experiment", options->experiment, "elongation, shear, inflation, cantilever or self-weight")
+                                                "or the cantilever's tip deflection; at finite strain, a block's sag "
+                                                "under its own weight or a stress-strain curve against the "
+                                                "neo-Hookean law");
+  cmd->add_option("experiment", options->experiment,
+                  "elongation, shear, inflation, cantilever or self-weight; finite-strain curves: uniaxial, "
+                  "simple-shear or hydrostatic")
       ->required()
-      ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever", "self-weight"}));
+      ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever", "self-weight", "uniaxial",
+                             "simple-shear", "hydrostatic"}));
   cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->capture_default_str();
   cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->capture_default_str();
   cmd->add_option("--density", options->density, "density [kg/m^3]")->capture_default_str();
-  cmd->add_option("--cells", options->cells, "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12)");
+  cmd->add_option("--cells", options->cells, "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12; the curves 4,4,4)");
   cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]")->capture_default_str();
-  cmd->add_option("--strain", options->strain, "load as the continuum strain it causes (small deformation)")
+  CLI::Option* strain = cmd->add_option("--strain", options->strain,
+                                        "load as the continuum strain it causes (small deformation); the curves' "
+                                        "end: uniaxial stretch - 1 (default -0.4), simple-shear gamma (0.5), "
+                                        "hydrostatic J - 1 (-0.1)")
+                            ->capture_default_str();
+  cmd->add_option("--points", options->points, "uniaxial, simple-shear, hydrostatic: points on the curve")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")->capture_default_str();
   cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
@@ -321,7 +389,10 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--magnify", options->magnify, "--png: draw displacements this many times their size (colours stay true)")
       ->check(finite_positive_number())
       ->capture_default_str();
-  return [options] { return run_measure(*options); };
+  return [options, strain] {
+    options->strain_given = strain->count() > 0;
+    return run_measure(*options);
+  };
 }
 
 }  // namespace cubespring::app

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -24,6 +25,14 @@ enum class Experiment {
   /// A block under its own weight at finite strain, its base (z = 0) bonded or on a frictionless
   /// floor (Support), gravity along -z: the top face's centre displacement and the volume change.
   kSelfWeight,
+  /// Finite strain, as stress-strain curves against the neo-Hookean law's closed form (below):
+  /// uniaxial tension or compression between frictionless platens on the x faces, lateral faces
+  /// free (strain: the nominal strain, stretch - 1);
+  kUniaxial,
+  /// simple shear u_x = gamma z imposed on every boundary node (strain: gamma);
+  kSimpleShear,
+  /// a uniform dilatation imposed on every boundary node (strain: the volume change, J - 1).
+  kHydrostatic,
 };
 const char* experiment_name(Experiment experiment);
 Result<Experiment> parse_experiment(const std::string& name);
@@ -51,11 +60,23 @@ struct ExperimentSettings {
   Eigen::Vector3i cells{1, 1, 1};                 ///< block size in cells
   Eigen::Vector3d cell_size{0.01, 0.01, 0.01};    ///< [m]
   /// Load size as the continuum strain it causes [-]: sigma = E S (elongation), gamma = S (shear),
-  /// each side shrinks by S (inflation, P = 3 B S). Not used by the cantilever.
+  /// each side shrinks by S (inflation, P = 3 B S). Not used by the cantilever and self-weight.
+  /// The finite-strain experiments take it as their end point (Experiment), in [-0.6, 1], not 0.
   double strain = 1e-4;
+  /// Finite-strain experiments: the curve's points, equally spaced from 0 to strain (>= 1).
+  int curve_points = 8;
   double gravity = 9.81;                          ///< cantilever and self-weight [m/s^2], along -z
   ShearControl shear_control = ShearControl::kDisplacement;
   Support support = Support::kBonded;             ///< self-weight only
+};
+
+/// One point of a finite-strain experiment's curve: the strain, the lattice's nominal (first
+/// Piola-Kirchhoff) stress [Pa] and the closed form's: P_xx for uniaxial and hydrostatic, P_xz for
+/// simple shear (the force on the face over its rest area).
+struct CurvePoint {
+  double strain = 0.0;
+  double stress = 0.0;
+  double expected = 0.0;
 };
 
 /// Continuum values and what the lattice gave; a quantity the experiment does not measure is empty.
@@ -89,6 +110,8 @@ struct ExperimentResult {
   std::optional<double> top_centre_uz;
   std::optional<double> volume_change;
   std::optional<double> least_cell_volume_ratio;
+  /// Finite-strain experiments: the curve (state holds its last point).
+  std::vector<CurvePoint> curve;
   Model model;
   State state;   ///< the static equilibrium
   int load_steps = 0;
@@ -98,5 +121,14 @@ struct ExperimentResult {
 /// Builds the block, applies the experiment's loads and constraints, solves for static equilibrium
 /// and measures. Errors name the invalid setting or the failed solve.
 Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings);
+
+/// The compressible neo-Hookean law of docs/model-neo-hookean.md (with its inversion barrier; J
+/// above 0.05) in closed form: nominal stresses [Pa] of a material's E and nu.
+/// Uniaxial stress, the lateral faces free (their stretch solved for zero lateral stress):
+double neo_hookean_uniaxial_stress(const Material& material, double stretch);
+/// Simple shear F = I + gamma e_x e_z^T: P_xz = G gamma (J = 1, any gamma).
+double neo_hookean_simple_shear_stress(const Material& material, double gamma);
+/// Uniform dilatation to the volume ratio J: P = J^(2/3) dU/dJ.
+double neo_hookean_hydrostatic_stress(const Material& material, double volume_ratio);
 
 }  // namespace cubespring

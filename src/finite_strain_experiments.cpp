@@ -1,0 +1,181 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Finite-strain experiments (issue 24) and the neo-Hookean law's closed forms they compare with
+// (docs/model-neo-hookean.md section 2: W = G/2 (I1bar - 3) + B/2 (J - 1)^2 + W_b(J)).
+#include "finite_strain_experiments.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "cubespring/cell_law.h"
+#include "cubespring/forces.h"
+#include "cubespring/static_solver.h"
+
+namespace cubespring {
+namespace {
+
+// dU/dJ of the volumetric energy with its barrier: the Cauchy pressure part of the stress [Pa].
+double volumetric_pressure(const Material& material, double j) {
+  const double b = bulk_modulus(material);
+  double pressure = b * (j - 1.0);
+  constexpr double j0 = kBarrierVolumeRatio;
+  if (j < j0) {
+    const double u = j0 - j;
+    pressure -= b * u * u * (3.0 * j + u) / (j0 * j0 * j * j);
+  }
+  return pressure;
+}
+
+// Cauchy stress along an axis of a diagonal stretch (a, b, c) with J = abc: G/J dev(Bbar) + p.
+double principal_cauchy_stress(const Material& material, double along, double other_1, double other_2) {
+  const double j = along * other_1 * other_2;
+  const double i1 = along * along + other_1 * other_1 + other_2 * other_2;
+  return shear_modulus(material) / j * std::pow(j, -2.0 / 3.0) * (along * along - i1 / 3.0) +
+         volumetric_pressure(material, j);
+}
+
+// The nodes of the block's face at index `at` along axis.
+template <typename Visit>
+void for_face_nodes(const Model& model, int axis, int at, const Visit& visit) {
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    if (model.node_grid_index[n][axis] == at) visit(n);
+  }
+}
+
+bool on_boundary(const Model& model, const Eigen::Vector3i& cells, int n) {
+  const Eigen::Vector3i& index = model.node_grid_index[n];
+  return (index.array() == 0).any() || (index.array() == cells.array()).any();
+}
+
+// The constraints of one load level.
+Result<Constraints> constraints_at(Experiment experiment, const Model& model, const Eigen::Vector3i& cells,
+                                   double strain) {
+  Constraints constraints(model);
+  const Eigen::Vector3d size = cells.cast<double>().cwiseProduct(model.cell_size);
+  switch (experiment) {
+    case Experiment::kUniaxial: {
+      const double tolerance = 1e-9 * model.cell_size.x();
+      const Eigen::Vector3d far(1e9, 1e9, 1e9);
+      const Eigen::Vector3d origin_x = model.origin + Eigen::Vector3d(tolerance, 0, 0);
+      const Eigen::Vector3d end_x = model.origin + Eigen::Vector3d(size.x() - tolerance, 0, 0);
+      if (Status s = constraints.prescribe_box_axis_displacement(model, -far, Eigen::Vector3d(origin_x.x(), 1e9, 1e9),
+                                                                 0, 0.0);
+          !s) {
+        return s;
+      }
+      if (Status s = constraints.prescribe_box_axis_displacement(model, Eigen::Vector3d(end_x.x(), -1e9, -1e9), far, 0,
+                                                                 strain * size.x());
+          !s) {
+        return s;
+      }
+      if (Status s = hold_face_in_plane(model, cells, 0, constraints); !s) return s;
+      break;
+    }
+    case Experiment::kSimpleShear:
+    case Experiment::kHydrostatic: {
+      const double stretch = std::cbrt(1.0 + strain);
+      for (int n = 0; n < model.num_nodes(); ++n) {
+        if (!on_boundary(model, cells, n)) continue;
+        const Eigen::Vector3d rest = model.rest_positions.col(n) - model.origin;
+        Eigen::Vector3d displacement = (stretch - 1.0) * rest;
+        if (experiment == Experiment::kSimpleShear) displacement = Eigen::Vector3d(strain * rest.z(), 0, 0);
+        if (Status s = constraints.prescribe_displacement(model, n, displacement); !s) return s;
+      }
+      break;
+    }
+    default:
+      return Status::error(std::string(experiment_name(experiment)) + " is not a finite-strain experiment");
+  }
+  return constraints;
+}
+
+// The nominal stress the constraints carry: the force on the face x = L (uniaxial, hydrostatic)
+// or z = H (simple shear) along x, over its rest area. At equilibrium the constraints' reaction
+// is minus the elastic force on their nodes.
+double measured_stress(Experiment experiment, const Model& model, const Eigen::Vector3i& cells, const State& state) {
+  Eigen::Matrix3Xd forces;
+  ForceWorkspace ws;
+  compute_forces(model, state, Loads{}, ForceOptions{false, 1}, ws, forces);
+  const int face_axis = experiment == Experiment::kSimpleShear ? 2 : 0;
+  double force = 0.0;
+  for_face_nodes(model, face_axis, cells[face_axis], [&](int n) { force -= forces(0, n); });
+  const Eigen::Vector3d size = cells.cast<double>().cwiseProduct(model.cell_size);
+  return force / (size.prod() / size[face_axis]);
+}
+
+double expected_stress(Experiment experiment, const Material& material, double strain) {
+  switch (experiment) {
+    case Experiment::kUniaxial: return neo_hookean_uniaxial_stress(material, 1.0 + strain);
+    case Experiment::kSimpleShear: return neo_hookean_simple_shear_stress(material, strain);
+    default: return neo_hookean_hydrostatic_stress(material, 1.0 + strain);
+  }
+}
+
+}  // namespace
+
+bool is_finite_strain_experiment(Experiment experiment) {
+  return experiment == Experiment::kUniaxial || experiment == Experiment::kSimpleShear ||
+         experiment == Experiment::kHydrostatic;
+}
+
+Status hold_face_in_plane(const Model& model, const Eigen::Vector3i& cells, int axis, Constraints& constraints) {
+  const int first = (axis + 1) % 3, second = (axis + 2) % 3;
+  const int p = std::min(first, second), q = std::max(first, second);
+  Eigen::Vector3i centre = Eigen::Vector3i::Zero();
+  centre[p] = cells[p] / 2;
+  centre[q] = cells[q] / 2;
+  Eigen::Vector3i row_end = centre;
+  row_end[p] = cells[p];
+  const int centre_node = model.node_at(centre), row_end_node = model.node_at(row_end);
+  for (const int other : {p, q}) {
+    if (Status s = constraints.prescribe_axis_position(centre_node, other, model.rest_positions(other, centre_node)); !s) {
+      return s;
+    }
+  }
+  return constraints.prescribe_axis_position(row_end_node, q, model.rest_positions(q, row_end_node));
+}
+
+Result<std::vector<CurvePoint>> finite_strain_curve(Experiment experiment, const Model& model,
+                                                    const ExperimentSettings& settings, State& state) {
+  std::vector<CurvePoint> curve;
+  for (int k = 1; k <= settings.curve_points; ++k) {
+    const double strain = settings.strain * k / settings.curve_points;
+    Result<Constraints> constraints = constraints_at(experiment, model, settings.cells, strain);
+    if (!constraints) return constraints.status();
+    state = rest_state(model);
+    StaticSettings static_settings;
+    static_settings.initial_load_steps = 4;
+    const StaticReport report = solve_static(model, constraints.value(), Loads{}, static_settings, state);
+    if (!report.converged) {
+      std::ostringstream message;
+      message << experiment_name(experiment) << " at strain " << strain << ": " << report.message;
+      return Status::error(message.str());
+    }
+    curve.push_back({strain, measured_stress(experiment, model, settings.cells, state),
+                     expected_stress(experiment, settings.material, strain)});
+  }
+  return curve;
+}
+
+double neo_hookean_uniaxial_stress(const Material& material, double stretch) {
+  // the lateral stretch whose Cauchy stress is zero: the stress rises with it (the volume term
+  // dominates both ends), so bisect, on a log scale, between J = 0.05 and a hundredfold volume
+  double low = std::sqrt(0.05 / stretch), high = std::sqrt(100.0 / stretch);
+  for (int i = 0; i < 200 && high / low > 1.0 + 1e-15; ++i) {
+    const double middle = std::sqrt(low * high);
+    (principal_cauchy_stress(material, middle, middle, stretch) > 0.0 ? high : low) = middle;
+  }
+  const double lateral = std::sqrt(low * high);
+  const double j = stretch * lateral * lateral;
+  return j * principal_cauchy_stress(material, stretch, lateral, lateral) / stretch;
+}
+
+double neo_hookean_simple_shear_stress(const Material& material, double gamma) {
+  return shear_modulus(material) * gamma;
+}
+
+double neo_hookean_hydrostatic_stress(const Material& material, double volume_ratio) {
+  return std::pow(volume_ratio, 2.0 / 3.0) * volumetric_pressure(material, volume_ratio);
+}
+
+}  // namespace cubespring
