@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 
 #include "cubespring/stiffness.h"
@@ -29,6 +30,7 @@ struct Problem {
   const Constraints& constraints;
   const Loads& full_loads;
   std::vector<std::uint8_t> driven;  // per degree of freedom
+  bool held = false;                  // the driven dofs hold every rigid motion (holds_the_body)
 };
 
 Loads scaled_loads(const Loads& loads, double factor) {
@@ -53,48 +55,98 @@ Eigen::VectorXd residual(const Problem& problem, const Loads& loads, const Eigen
   return r;
 }
 
-// Newton from x at fixed loads; returns false when it does not converge.
-bool newton(const Problem& problem, const Loads& loads, double reference_force, const StaticSettings& settings,
-            StiffnessAssembler& assembler, Eigen::Matrix3Xd& x, StaticReport& report) {
-  ForceWorkspace ws;
+// An equilibrium is unstable when the stiffness has an eigenvalue below -kNegativeCurvature times
+// its mean diagonal: then, and only then (Sylvester's law of inertia), K + kNegativeCurvature
+// mean I has a negative LDL^T pivot. Smaller negative curvatures are taken as neutral: near-zero-
+// energy modes of the lattice showed up to about 1e-4 of the mean diagonal under small loads (a
+// block of the paper's cells on a frictionless floor, nu = 0).
+constexpr double kNegativeCurvature = 1e-3;
+
+using Factorisation = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
+
+// The exact stiffness at x with identity rows and columns on the driven degrees of freedom.
+Eigen::SparseMatrix<double> free_stiffness(const Problem& problem, StiffnessAssembler& assembler,
+                                           const Eigen::Matrix3Xd& x) {
   SparseMatrix stiffness;
+  assembler.assemble(problem.model, x, StiffnessKind::kExact, 1.0, 0.0, stiffness);
+  Eigen::SparseMatrix<double> k = stiffness;
+  for (int col = 0; col < k.outerSize(); ++col) {
+    for (Eigen::SparseMatrix<double>::InnerIterator it(k, col); it; ++it) {
+      if (problem.driven[it.row()] || problem.driven[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
+    }
+  }
+  return k;
+}
+
+// Factorises k + shift I; false when that fails.
+bool factorise(const Eigen::SparseMatrix<double>& k, double shift, Factorisation& solver) {
+  Eigen::SparseMatrix<double> shifted = k;
+  for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
+  solver.compute(shifted);
+  return solver.info() == Eigen::Success;
+}
+
+double mean_diagonal(const Eigen::SparseMatrix<double>& k) { return k.diagonal().cwiseAbs().mean(); }
+
+// Newton from x at fixed loads; returns false when it does not converge. The line search takes
+// no step that raises the energy: where the Newton step is not downhill (an indefinite
+// stiffness), it searches along the force instead. `descend`: where K has a direction of negative
+// curvature, the step solves K + shift I with the least shift (within a factor of 2) that makes it
+// positive definite, a downhill step that heads for a minimum rather than the saddle nearby (after
+// leaving an unstable equilibrium).
+bool newton(const Problem& problem, const Loads& loads, double reference_force, const StaticSettings& settings,
+            StiffnessAssembler& assembler, Eigen::Matrix3Xd& x, StaticReport& report, bool descend) {
+  ForceWorkspace ws;
+  Factorisation solver;
   Eigen::VectorXd r = residual(problem, loads, x, ws);
   const double tolerance = settings.tolerance * reference_force;
+  const double cell = problem.model.cell_size.minCoeff();
   for (int iteration = 0; iteration < settings.max_newton_iterations; ++iteration) {
     report.residual = r.norm();
     if (report.residual <= tolerance) return true;
     ++report.newton_iterations;
 
-    // K dx = r on free dofs, identity rows on driven ones
-    assembler.assemble(problem.model, x, StiffnessKind::kExact, 1.0, 0.0, stiffness);
-    Eigen::SparseMatrix<double> k = stiffness;
-    double mean_diagonal = k.diagonal().cwiseAbs().mean();
-    for (int col = 0; col < k.outerSize(); ++col) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(k, col); it; ++it) {
-        if (problem.driven[it.row()] || problem.driven[it.col()]) it.valueRef() = it.row() == it.col() ? 1.0 : 0.0;
-      }
+    // K dx = r on free dofs, identity rows on driven ones. The shift of kShiftFraction keeps a
+    // free body's singular stiffness factorisable, and refinement removes its effect.
+    const Eigen::SparseMatrix<double> k = free_stiffness(problem, assembler, x);
+    const double mean = mean_diagonal(k);
+    double shift = kShiftFraction * mean;
+    if (!factorise(k, shift, solver)) return false;
+    const bool indefinite = descend && solver.vectorD().minCoeff() < 0.0;
+    // the least shift, within a factor of 2, that makes it positive definite: a larger one would
+    // shorten the step along the direction that leads downhill
+    if (indefinite) shift = 1e-3 * kNegativeCurvature * mean;
+    for (int tries = 0; indefinite && tries < 60; ++tries) {
+      if (!factorise(k, shift, solver)) return false;
+      if (solver.vectorD().minCoeff() > 0.0) break;
+      shift *= 2.0;
     }
-    Eigen::SparseMatrix<double> shifted = k;
-    for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += kShiftFraction * mean_diagonal;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(shifted);
-    if (solver.info() != Eigen::Success) return false;
     Eigen::VectorXd dx = solver.solve(r);
-    for (int step = 0; step < kRefinementSteps; ++step) dx += solver.solve(r - k * dx);
+    if (!indefinite) {
+      for (int step = 0; step < kRefinementSteps; ++step) dx += solver.solve(r - k * dx);
+    }
     if (!dx.allFinite()) return false;
 
-    // energy line search along dx (falls back to shorter steps when K is indefinite)
+    // energy line search along dx; an energy change below the round-off of the energy's terms (a
+    // load's work is about the reference force times a cell) cannot be told from none
     const double energy = potential_energy(problem.model, loads, x);
-    const double slope = -r.dot(dx);
-    double alpha = 1.0;
+    const double round_off = 1e-12 * std::max(std::abs(energy), reference_force * cell);
+    double slope = -r.dot(dx);  // dE/dalpha at alpha = 0
+    if (!(slope < 0.0)) {        // not downhill: along the force, a tenth of a cell at most at first
+      dx = r * (0.1 * cell / r.cwiseAbs().maxCoeff());
+      slope = -r.dot(dx);
+    }
+    bool accepted = false;
     Eigen::Matrix3Xd trial;
-    for (; alpha > 1e-6; alpha *= 0.5) {
+    for (double alpha = 1.0; alpha > 1e-6; alpha *= 0.5) {
       trial = x + alpha * Eigen::Map<const Eigen::Matrix3Xd>(dx.data(), 3, x.cols());
       const double trial_energy = potential_energy(problem.model, loads, trial);
-      if (std::isfinite(trial_energy) && (slope >= 0.0 || trial_energy <= energy + 1e-4 * alpha * slope ||
-                                          std::abs(trial_energy - energy) <= 1e-14 * std::abs(energy))) {
+      if (std::isfinite(trial_energy) && trial_energy <= energy + 1e-4 * alpha * slope + round_off) {
+        accepted = true;
         break;
       }
     }
+    if (!accepted) return false;
     x = trial;
     r = residual(problem, loads, x, ws);
     // a full Newton step below round-off of the positions: the residual is at its floor
@@ -105,6 +157,95 @@ bool newton(const Problem& problem, const Loads& loads, double reference_force, 
   }
   report.residual = r.norm();
   return report.residual <= tolerance;
+}
+
+// A direction of negative curvature of the exact stiffness K at x on the free dofs (scaled to move
+// no node more than a tenth of a cell), or an empty vector when there is none: the equilibrium is
+// stable. From the most negative pivot d_i of P (K + s I) P^T = L D L^T, s = kNegativeCurvature
+// times the mean diagonal: v = P^T L^-T e_i has v^T (K + s I) v = d_i < 0.
+Eigen::VectorXd negative_curvature(const Problem& problem, StiffnessAssembler& assembler, const Eigen::Matrix3Xd& x) {
+  const Eigen::SparseMatrix<double> k = free_stiffness(problem, assembler, x);
+  const double mean = mean_diagonal(k);
+  Factorisation solver;
+  if (!factorise(k, kNegativeCurvature * mean, solver)) return {};
+  const Eigen::VectorXd pivots = solver.vectorD();
+  Eigen::Index most_negative = 0;
+  if (!(pivots.minCoeff(&most_negative) < 0.0)) return {};
+  Eigen::VectorXd unit = Eigen::VectorXd::Zero(pivots.size());
+  unit[most_negative] = 1.0;
+  Eigen::VectorXd direction = solver.permutationPinv() * Eigen::VectorXd(solver.matrixU().solve(unit));
+  for (Eigen::Index i = 0; i < direction.size(); ++i) {
+    if (problem.driven[i]) direction[i] = 0.0;
+  }
+  const double largest = direction.cwiseAbs().maxCoeff();
+  if (!(largest > 0.0) || !std::isfinite(largest) || !(direction.dot(k * direction) < 0.0)) return {};
+  return direction * (0.1 * problem.model.cell_size.minCoeff() / largest);
+}
+
+// Moves x downhill along +-direction (the side and length, up to 4 times it, of lowest energy).
+// False when neither side lowers the energy.
+bool leave_downhill(const Problem& problem, const Loads& loads, const Eigen::VectorXd& direction,
+                    Eigen::Matrix3Xd& x) {
+  const Eigen::Map<const Eigen::Matrix3Xd> step(direction.data(), 3, x.cols());
+  double best = potential_energy(problem.model, loads, x);
+  Eigen::Matrix3Xd best_x = x;
+  for (const double length : {0.25, 0.5, 1.0, 2.0, 4.0}) {
+    for (const double side : {1.0, -1.0}) {
+      const Eigen::Matrix3Xd trial = x + (side * length) * step;
+      const double energy = potential_energy(problem.model, loads, trial);
+      if (std::isfinite(energy) && energy < best) {
+        best = energy;
+        best_x = trial;
+      }
+    }
+  }
+  if (best_x == x) return false;
+  x = best_x;
+  return true;
+}
+
+// Newton, then, for a held body, away from each unstable equilibrium it finds and towards a
+// minimum, within the settings' escapes. False when it does not converge or ends unstable
+// (report.message says).
+bool stable_equilibrium(const Problem& problem, const Loads& loads, double reference_force,
+                        const StaticSettings& settings, StiffnessAssembler& assembler, Eigen::Matrix3Xd& x,
+                        StaticReport& report) {
+  if (!newton(problem, loads, reference_force, settings, assembler, x, report, false)) return false;
+  if (!problem.held) return true;
+  for (;;) {
+    const Eigen::VectorXd direction = negative_curvature(problem, assembler, x);
+    if (direction.size() == 0) return true;
+    ++report.unstable_equilibria;
+    if (report.unstable_equilibria > settings.max_instability_escapes) {
+      report.message = "the equilibrium found is unstable (its stiffness has a direction of negative curvature) "
+                       "and max_instability_escapes = " + std::to_string(settings.max_instability_escapes) +
+                       " escapes are spent";
+      return false;
+    }
+    if (!leave_downhill(problem, loads, direction, x)) return false;
+    if (!newton(problem, loads, reference_force, settings, assembler, x, report, true)) return false;
+  }
+}
+
+// Whether the driven degrees of freedom hold the body: no rigid motion (3 translations, 3
+// rotations about the centroid) leaves all of them in place. Only then is an equilibrium's
+// stability judged: a free body's rotations under dead loads have a curvature of their own.
+bool holds_the_body(const Model& model, const std::vector<std::uint8_t>& driven) {
+  const Eigen::Vector3d centroid = model.rest_positions.rowwise().mean();
+  const double length = std::max(model.cell_size.maxCoeff(), 1e-300);
+  Eigen::Matrix<double, 6, 6> gram = Eigen::Matrix<double, 6, 6>::Zero();  // R_d^T R_d
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3d arm = (model.rest_positions.col(n) - centroid) / length;
+    for (int a = 0; a < 3; ++a) {
+      if (!driven[3 * n + a]) continue;
+      Eigen::Matrix<double, 6, 1> row = Eigen::Matrix<double, 6, 1>::Zero();  // motion of dof (n, a)
+      row[a] = 1.0;
+      for (int w = 0; w < 3; ++w) row[3 + w] = Eigen::Vector3d::Unit(w).cross(arm)[a];
+      gram += row * row.transpose();
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(gram);
+  return eigen.eigenvalues()[0] > 1e-9 * std::max(eigen.eigenvalues()[5], 1e-300);
 }
 
 }  // namespace
@@ -121,6 +262,9 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   }
   if (invalid.empty() && !(settings.tolerance > 0.0 && std::isfinite(settings.tolerance))) {
     invalid = "tolerance = " + std::to_string(settings.tolerance) + ": must be a finite number > 0";
+  }
+  if (invalid.empty() && settings.max_instability_escapes < 0) {
+    invalid = "max_instability_escapes = " + std::to_string(settings.max_instability_escapes) + ": must be >= 0";
   }
   if (invalid.empty() && (settings.initial_load_steps < 1 || settings.max_load_steps < 1 ||
                           settings.max_newton_iterations < 1)) {
@@ -142,6 +286,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
       target(a, n) = constraints.target(n)[a];
     }
   }
+  problem.held = holds_the_body(model, problem.driven);
   // the force scale that residuals are measured against
   double reference_force = (loads.gravity.norm() * model.mass).norm();
   if (loads.nodal_forces.size() > 0) reference_force = std::max(reference_force, loads.nodal_forces.norm());
@@ -173,7 +318,8 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
     for (int i = 0; i < 3 * num_nodes; ++i) {
       if (problem.driven[i]) trial(i) = start_driven(i) + next * (target(i) - start_driven(i));
     }
-    if (newton(problem, scaled_loads(loads, next), reference_force, settings, *assembler, trial, report)) {
+    report.message.clear();
+    if (stable_equilibrium(problem, scaled_loads(loads, next), reference_force, settings, *assembler, trial, report)) {
       x = trial;
       done = next;
       ++report.load_steps;
@@ -185,6 +331,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
       message << "static solve did not converge at load fraction " << next << " (residual " << report.residual
               << " N after " << report.newton_iterations << " Newton iterations, smallest increment "
               << increment << ")";
+      if (!report.message.empty()) message << ": " << report.message;
       report.message = message.str();
       state.positions = x;
       state.velocities.setZero(3, num_nodes);

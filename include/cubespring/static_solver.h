@@ -17,10 +17,21 @@ struct StaticSettings {
   int max_load_steps = 256;         ///< increments are halved on failure down to 1 / max_load_steps
   int max_newton_iterations = 40;   ///< per increment
   double tolerance = 1e-9;          ///< residual force relative to the applied load (L2 norms)
+  /// An equilibrium whose exact stiffness has a direction of negative curvature is unstable (a
+  /// saddle or a maximum of the energy): the solver leaves it along that direction, downhill, and
+  /// solves again, at most this many times in a solve; 0 reports it unstable at once.
+  int max_instability_escapes = 16;
 };
 
 struct StaticReport {
+  /// An equilibrium was found at the full load and, when the constraints hold every rigid motion
+  /// of the body, it is stable: the exact (unprojected) stiffness on the free degrees of freedom
+  /// has no eigenvalue below -1e-3 of its mean diagonal (the LDL^T pivots of the stiffness plus
+  /// that much are all positive). An unstable equilibrium of a held body
+  /// is never reported as converged. (A free or partly held body's stability is not judged: its
+  /// rigid rotations under dead loads have a curvature of their own.)
   bool converged = false;
+  int unstable_equilibria = 0;  ///< unstable equilibria met on the way, and left downhill
   int load_steps = 0;           ///< increments taken
   int newton_iterations = 0;    ///< in all increments
   double residual = 0.0;        ///< final residual force [N] on the free nodes
@@ -28,8 +39,11 @@ struct StaticReport {
 };
 
 /// Static equilibrium under the loads and constraints: Newton's method on the exact stiffness with
-/// a sparse LDL^T solver, an energy line search, and load stepping (the loads and the driven
-/// nodes' displacements ramp from zero to full). state.positions holds the result; velocities are
+/// a sparse LDL^T solver, an energy line search that never accepts a rise of the energy (where
+/// the Newton step is not downhill, it takes the force's direction), and load stepping (the loads
+/// and the driven nodes' displacements ramp from zero to full). Every equilibrium is checked for
+/// stability (StaticReport::converged); an unstable one is left along a direction of negative
+/// curvature and solved again (StaticSettings::max_instability_escapes). state.positions holds the result; velocities are
 /// zeroed. Free bodies (no driven node) are solved in the range of the stiffness: rigid and
 /// zero-energy modes are not excited by self-equilibrated loads. Loads or constraints that do not
 /// fit the body, a gravity that is not finite or settings out of range are refused (the message

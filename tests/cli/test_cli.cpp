@@ -104,7 +104,8 @@ TEST(Cli, LawIsSelectableAndNamed) {
 // comparison is tests/validation/test_self_weight_fem.cpp); the default block is a 12 cm cube.
 TEST(Cli, SelfWeightReportsTheSagAndTheVolumeChange) {
   const nlohmann::json j = run_json(
-      "measure self-weight --young 5000 --poisson 0.45 --density 1060 --law neo-hookean --cells 4,4,4 --cell-size 0.03");
+      "measure self-weight --young 5000 --poisson 0.45 --density 1060 --law neo-hookean --model exact-bending "
+      "--cells 4,4,4 --cell-size 0.03");
   EXPECT_EQ(j["experiment"], "self-weight");
   EXPECT_EQ(j["inputs"]["law"], "neo-hookean");
   EXPECT_EQ(j["inputs"]["cells"], nlohmann::json::array({4, 4, 4}));
@@ -117,8 +118,8 @@ TEST(Cli, SelfWeightReportsTheSagAndTheVolumeChange) {
   EXPECT_EQ(j["inputs"]["support"], "bonded");
   // on a frictionless floor the base spreads: it sags further (CalculiX: 13.9 mm)
   const nlohmann::json floor = run_json(
-      "measure self-weight --young 5000 --poisson 0.45 --density 1060 --law neo-hookean --cells 4,4,4 --cell-size 0.03 "
-      "--support floor");
+      "measure self-weight --young 5000 --poisson 0.45 --density 1060 --law neo-hookean --model exact-bending "
+      "--cells 4,4,4 --cell-size 0.03 --support floor");
   EXPECT_EQ(floor["inputs"]["support"], "floor");
   EXPECT_LT(floor["measured"]["top_centre_uz"].get<double>(), j["measured"]["top_centre_uz"].get<double>());
   const ToolRun table = run_tool("measure self-weight --cells 2,2,2");

@@ -181,9 +181,10 @@ TEST(Experiments, SoftCantileverSagsFarAndStaysInEquilibrium) {
   s.material.young_modulus = 1e5;
   s.cells = {16, 4, 4};
   const ExperimentResult r = run(Experiment::kCantilever, s);
-  // about a third of the beam's length; less than linear theory (the beam shortens as it bends)
+  // about a third of the beam's length; CalculiX NLGEOM neo-Hookean gives -52.82 mm (the README's
+  // accuracy table), which the paper's cells overshoot by 8-10% at this deflection
   EXPECT_LT(*r.tip_deflection, -0.04);
-  EXPECT_GT(*r.tip_deflection, 10 * -5.649e-3 * 1.0);
+  EXPECT_NEAR(*r.tip_deflection, -52.82e-3, 0.15 * 52.82e-3);
 }
 
 // With nu = 0 a block whose base is bonded, or on a frictionless floor, is in uniaxial stress

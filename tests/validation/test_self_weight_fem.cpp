@@ -64,8 +64,9 @@ TEST(SelfWeightFem, TheLatticeSagsAndKeepsItsVolumeAsCalculixNeoHookean) {
   const std::map<Key, SelfWeightRow> references = converged_references();
   ASSERT_EQ(references.size(), 4u) << kCommitted << ": 5 and 10 kPa, bonded and on the floor";
   for (const auto& [key, reference] : references) {
-    for (const Case c : {Case{CellModel::kBaudet2007, 12}, Case{CellModel::kExactBending, 12},
-                         Case{CellModel::kExactBending, 8}}) {
+    // the exact-bending cells the scenes use; the paper's cells with the neo-Hookean law buckle
+    // under compression (their equilibria here are unstable: docs/model-neo-hookean.md section 5)
+    for (const Case c : {Case{CellModel::kExactBending, 12}, Case{CellModel::kExactBending, 8}}) {
       ExperimentSettings settings;
       settings.material.young_modulus = key.first;
       settings.material.poisson_ratio = validation::kCubePoisson;

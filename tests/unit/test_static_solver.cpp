@@ -1,0 +1,102 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The static solver at finite strain: it never reports an unstable equilibrium of a held body as
+// converged. Judged here independently of the solver's own test (LDL^T pivots): by the dense
+// eigenvalues of the exact stiffness on the free degrees of freedom.
+#include <vector>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include "cubespring/constraints.h"
+#include "cubespring/forces.h"
+#include "cubespring/lattice.h"
+#include "cubespring/static_solver.h"
+#include "cubespring/stiffness.h"
+
+namespace cubespring {
+namespace {
+
+struct Compressed {
+  Model model;
+  Constraints constraints;
+};
+
+// A cube of n^3 exact-bending cells of 1 cm, 5 kPa, nu = 0.3, neo-Hookean, squeezed along x by
+// `strain` between frictionless platens (the x faces held along x only; one node of the face
+// x = 0 also along y and z, another along z, against sliding and turning).
+Compressed squeezed_cube(int n, double strain) {
+  Material material;
+  material.young_modulus = 5e3;
+  material.poisson_ratio = 0.3;
+  LatticeDesc desc = box_lattice({n, n, n}, Eigen::Vector3d::Constant(0.01), material);
+  desc.model = CellModel::kExactBending;
+  desc.law = CellLaw::kNeoHookean;
+  Compressed c{build_model(desc).value(), {}};
+  const Model& model = c.model;
+  c.constraints = Constraints(model);
+  const double side = 0.01 * n, tolerance = 1e-9;
+  EXPECT_TRUE(c.constraints.prescribe_box_axis_displacement(model, Eigen::Vector3d::Constant(-1),
+                                                            Eigen::Vector3d(tolerance, 1, 1), 0, 0.0));
+  EXPECT_TRUE(c.constraints.prescribe_box_axis_displacement(model, Eigen::Vector3d(side - tolerance, -1, -1),
+                                                            Eigen::Vector3d::Constant(1), 0, strain * side));
+  const int centre = model.node_at({0, n / 2, n / 2}), row_end = model.node_at({0, n, n / 2});
+  EXPECT_TRUE(c.constraints.prescribe_axis_position(centre, 1, model.rest_positions(1, centre)));
+  EXPECT_TRUE(c.constraints.prescribe_axis_position(centre, 2, model.rest_positions(2, centre)));
+  EXPECT_TRUE(c.constraints.prescribe_axis_position(row_end, 2, model.rest_positions(2, row_end)));
+  return c;
+}
+
+// The least eigenvalue of the exact stiffness on the free dofs, over its mean diagonal.
+double least_relative_curvature(const Compressed& c, const Eigen::Matrix3Xd& x) {
+  StiffnessAssembler assembler(c.model);
+  SparseMatrix stiffness;
+  assembler.assemble(c.model, x, StiffnessKind::kExact, 1.0, 0.0, stiffness);
+  const Eigen::MatrixXd k = Eigen::MatrixXd(Eigen::SparseMatrix<double>(stiffness));
+  std::vector<int> free;
+  for (int n = 0; n < c.model.num_nodes(); ++n) {
+    for (int a = 0; a < 3; ++a) {
+      if (((c.constraints.driven_axes(n) >> a) & 1) == 0) free.push_back(3 * n + a);
+    }
+  }
+  Eigen::MatrixXd k_free(free.size(), free.size());
+  for (std::size_t i = 0; i < free.size(); ++i) {
+    for (std::size_t j = 0; j < free.size(); ++j) k_free(i, j) = k(free[i], free[j]);
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(k_free);
+  return eigen.eigenvalues()[0] / k_free.diagonal().cwiseAbs().mean();
+}
+
+// Squeezed by 35% the cube's lattice has equilibria with directions of negative curvature (its
+// cells buckle); whatever path the solve takes, the state it reports converged is stable.
+TEST(StaticSolver, NeverReportsAnUnstableEquilibriumOfAHeldBodyAsConverged) {
+  for (const int n : {3, 4}) {
+    const Compressed c = squeezed_cube(n, -0.35);
+    State state = rest_state(c.model);
+    const StaticReport report = solve_static(c.model, c.constraints, Loads{}, StaticSettings{}, state);
+    ASSERT_TRUE(report.converged) << report.message;
+    std::printf("%d^3 cells: %d unstable equilibria left on the way\n", n, report.unstable_equilibria);
+    EXPECT_GT(least_relative_curvature(c, state.positions), -1e-3) << n << "^3 cells";
+  }
+}
+
+// With no escapes allowed, a solve that meets an unstable equilibrium reports it, not converged.
+TEST(StaticSolver, WithoutEscapesAnUnstableEquilibriumIsReported) {
+  const Compressed c = squeezed_cube(4, -0.35);
+  State state = rest_state(c.model);
+  StaticSettings settings;
+  settings.max_instability_escapes = 0;
+  const StaticReport report = solve_static(c.model, c.constraints, Loads{}, settings, state);
+  if (report.converged) {
+    EXPECT_GT(least_relative_curvature(c, state.positions), -1e-3);
+  } else {
+    EXPECT_NE(report.message.find("unstable"), std::string::npos) << report.message;
+  }
+  settings.max_instability_escapes = -1;
+  const StaticReport refused = solve_static(c.model, c.constraints, Loads{}, settings, state);
+  EXPECT_FALSE(refused.converged);
+  EXPECT_NE(refused.message.find("max_instability_escapes"), std::string::npos) << refused.message;
+}
+
+}  // namespace
+}  // namespace cubespring
