@@ -128,9 +128,8 @@ Status hold_face_in_plane(const Model& model, const Eigen::Vector3i& cells, int 
   row_end[p] = cells[p];
   const int centre_node = model.node_at(centre), row_end_node = model.node_at(row_end);
   for (const int other : {p, q}) {
-    if (Status s = constraints.prescribe_axis_position(centre_node, other, model.rest_positions(other, centre_node)); !s) {
-      return s;
-    }
+    const double at_rest = model.rest_positions(other, centre_node);
+    if (Status s = constraints.prescribe_axis_position(centre_node, other, at_rest); !s) return s;
   }
   return constraints.prescribe_axis_position(row_end_node, q, model.rest_positions(q, row_end_node));
 }

@@ -347,7 +347,9 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->capture_default_str();
   cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->capture_default_str();
   cmd->add_option("--density", options->density, "density [kg/m^3]")->capture_default_str();
-  cmd->add_option("--cells", options->cells, "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12; the curves 4,4,4)");
+  cmd->add_option("--cells", options->cells,
+                  "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12; the curves "
+                  "4,4,4)");
   cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]")->capture_default_str();
   CLI::Option* strain = cmd->add_option("--strain", options->strain,
                                         "load as the continuum strain it causes (small deformation); the curves' "
@@ -357,7 +359,8 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--points", options->points, "uniaxial, simple-shear, hydrostatic: points on the curve")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")->capture_default_str();
+  cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")
+      ->capture_default_str();
   cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
       ->check(CLI::IsMember({"displacement", "force"}))
       ->capture_default_str();

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 // The paper's virtual experiments against the continuum moduli (model notes section 8, 3-6, 10, 12).
 #include <cmath>
+#include <vector>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -223,6 +224,113 @@ TEST(Experiments, SelfWeightWithoutPoissonEffectIsAUniaxialColumn) {
   EXPECT_NE(unloaded.message().find("gravity"), std::string::npos) << unloaded.message();
 }
 
+// The law written out (docs/model-neo-hookean.md section 2, above the barrier) per rest volume.
+double neo_hookean_energy(const Material& m, const Eigen::Matrix3d& f) {
+  const double g = m.young_modulus / (2 * (1 + m.poisson_ratio));
+  const double b = m.young_modulus / (3 * (1 - 2 * m.poisson_ratio));
+  const double j = f.determinant();
+  return g / 2 * (std::pow(j, -2.0 / 3.0) * (f.transpose() * f).trace() - 3) + b / 2 * (j - 1) * (j - 1);
+}
+
+// The closed forms against derivatives of the energy by central differences: P_xz = dW/dgamma;
+// P = dW/dlambda / 3 for F = lambda I; uniaxial P_xx = d/dlambda of min over the lateral stretch
+// of W (the envelope theorem: the lateral stress is zero at the minimum).
+TEST(Experiments, NeoHookeanClosedFormsAreDerivativesOfTheEnergy) {
+  for (const double nu : {0.3, 0.45, 0.49}) {
+    Material m;
+    m.young_modulus = 5e3;
+    m.poisson_ratio = nu;
+    const double d = 1e-5;
+    const auto shear = [&](double gamma) {
+      Eigen::Matrix3d f = Eigen::Matrix3d::Identity();
+      f(0, 2) = gamma;
+      return neo_hookean_energy(m, f);
+    };
+    for (const double gamma : {0.1, 0.5}) {
+      EXPECT_NEAR(neo_hookean_simple_shear_stress(m, gamma), (shear(gamma + d) - shear(gamma - d)) / (2 * d),
+                  1e-6 * m.young_modulus);
+    }
+    const auto dilated = [&](double stretch) { return neo_hookean_energy(m, stretch * Eigen::Matrix3d::Identity()); };
+    for (const double j : {0.9, 1.05}) {
+      const double stretch = std::cbrt(j);
+      EXPECT_NEAR(neo_hookean_hydrostatic_stress(m, j), (dilated(stretch + d) - dilated(stretch - d)) / (6 * d),
+                  1e-6 * m.young_modulus);
+    }
+    const auto relaxed = [&](double stretch) {  // min over the lateral stretch, by golden sections
+      double low = 0.5, high = 2.0;
+      const auto energy = [&](double lateral) {
+        return neo_hookean_energy(m, Eigen::Vector3d(stretch, lateral, lateral).asDiagonal());
+      };
+      for (int i = 0; i < 200; ++i) {
+        const double a = high - 0.618 * (high - low), b = low + 0.618 * (high - low);
+        (energy(a) < energy(b) ? high : low) = energy(a) < energy(b) ? b : a;
+      }
+      return energy(0.5 * (low + high));
+    };
+    for (const double stretch : {0.6, 0.8, 1.2, 1.5}) {
+      EXPECT_NEAR(neo_hookean_uniaxial_stress(m, stretch), (relaxed(stretch + d) - relaxed(stretch - d)) / (2 * d),
+                  1e-4 * m.young_modulus)
+          << "nu " << nu << ", stretch " << stretch;
+    }
+    EXPECT_NEAR(neo_hookean_uniaxial_stress(m, 1.0 + 1e-6) / 1e-6, m.young_modulus, 1e-4 * m.young_modulus);
+  }
+}
+
+// Finite-strain curves of the exact-bending cells the scenes use (4^3 cells): the nominal stress
+// within 3% of the law at every point, in tissue's range of nu (issue 24's target); at nu = 0.3
+// to 30% compression (beyond it the lattice buckles: 4.8% short at 40%, docs/model-neo-hookean.md).
+TEST(Experiments, FiniteStrainCurvesOfExactBendingCellsFollowTheLaw) {
+  struct Curve {
+    Experiment experiment;
+    double poisson, strain;
+  };
+  std::vector<Curve> curves;
+  for (const double nu : {0.45, 0.49}) {
+    for (const double strain : {-0.4, 0.5}) curves.push_back({Experiment::kUniaxial, nu, strain});
+  }
+  curves.push_back({Experiment::kUniaxial, 0.3, -0.3});
+  curves.push_back({Experiment::kUniaxial, 0.3, 0.5});
+  for (const double nu : {0.3, 0.45, 0.49}) {
+    curves.push_back({Experiment::kSimpleShear, nu, 0.5});
+    curves.push_back({Experiment::kHydrostatic, nu, -0.1});
+    curves.push_back({Experiment::kHydrostatic, nu, 0.05});
+  }
+  for (const Curve& c : curves) {
+    ExperimentSettings s;
+    s.material.young_modulus = 5e3;
+    s.material.poisson_ratio = c.poisson;
+    s.model = CellModel::kExactBending;
+    s.law = CellLaw::kNeoHookean;
+    s.cells = {4, 4, 4};
+    s.strain = c.strain;
+    s.curve_points = 4;
+    const ExperimentResult r = run(c.experiment, s);
+    ASSERT_EQ(r.curve.size(), 4u);
+    EXPECT_DOUBLE_EQ(r.curve.back().strain, c.strain);
+    for (const CurvePoint& point : r.curve) {
+      EXPECT_NEAR(point.stress, point.expected, 0.03 * std::abs(point.expected))
+          << experiment_name(c.experiment) << ", nu " << c.poisson << ", strain " << point.strain;
+    }
+  }
+}
+
+// The paper's cells with the neo-Hookean law have modes that compression makes unstable: at 5%
+// the homogeneous state is an unstable equilibrium, and the stable one the solver reaches carries
+// a quarter less than the law. A known defect (docs/model-neo-hookean.md section 5), held here so
+// that a change to it shows.
+TEST(Experiments, PaperCellsWithTheNeoHookeanLawBuckleUnderCompression) {
+  ExperimentSettings s;
+  s.material.young_modulus = 5e3;
+  s.material.poisson_ratio = 0.45;
+  s.model = CellModel::kBaudet2007;
+  s.law = CellLaw::kNeoHookean;
+  s.cells = {4, 4, 4};
+  s.strain = -0.05;
+  s.curve_points = 1;
+  const ExperimentResult r = run(Experiment::kUniaxial, s);
+  EXPECT_LT(std::abs(r.curve.back().stress), 0.9 * std::abs(r.curve.back().expected));
+}
+
 TEST(Experiments, RejectBadSettings) {
   ExperimentSettings s = cube(0.3);
   s.cells = {0, 1, 1};
@@ -240,6 +348,16 @@ TEST(Experiments, RejectBadSettings) {
   r = run_experiment(Experiment::kElongation, s);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.message().find("a body may have at most"), std::string::npos) << r.message();
+  s = cube(0.3);
+  s.strain = 0.0;
+  r = run_experiment(Experiment::kUniaxial, s);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.message().find("nominal strain"), std::string::npos) << r.message();
+  s.strain = -0.7;
+  EXPECT_FALSE(run_experiment(Experiment::kHydrostatic, s).ok());
+  s.strain = 0.1;
+  s.curve_points = 0;
+  EXPECT_FALSE(run_experiment(Experiment::kSimpleShear, s).ok());
   Result<Experiment> unknown = parse_experiment("twist");
   ASSERT_FALSE(unknown.ok());
   EXPECT_NE(unknown.message().find("twist"), std::string::npos);
