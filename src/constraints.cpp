@@ -7,6 +7,20 @@
 #include <sstream>
 
 namespace cubespring {
+namespace {
+
+// The nodes whose rest position lies in [lower, upper], or an error naming the box if none does.
+Result<std::vector<int>> nodes_in(const Model& model, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
+  std::vector<int> nodes = model.nodes_in_box(lower, upper);
+  if (nodes.empty()) {
+    std::ostringstream message;
+    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
+    return Status::error(message.str());
+  }
+  return nodes;
+}
+
+}  // namespace
 
 Constraints::Constraints(const Model& model)
     : driven_(model.num_nodes(), 0), target_(model.rest_positions) {}
@@ -31,13 +45,9 @@ Status Constraints::fix_nodes(const Model& model, const std::vector<int>& nodes)
 }
 
 Status Constraints::fix_box(const Model& model, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper) {
-  const std::vector<int> nodes = model.nodes_in_box(lower, upper);
-  if (nodes.empty()) {
-    std::ostringstream message;
-    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
-    return Status::error(message.str());
-  }
-  return fix_nodes(model, nodes);
+  Result<std::vector<int>> found = nodes_in(model, lower, upper);
+  if (!found) return found.status();
+  return fix_nodes(model, found.value());
 }
 
 Status Constraints::prescribe_position(int node, const Eigen::Vector3d& position) {
@@ -65,12 +75,9 @@ Status Constraints::prescribe_box_axis_displacement(const Model& model, const Ei
   if (!std::isfinite(displacement)) {
     return Status::error("displacement " + std::to_string(displacement) + " m is not finite");
   }
-  const std::vector<int> nodes = model.nodes_in_box(lower, upper);
-  if (nodes.empty()) {
-    std::ostringstream message;
-    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
-    return Status::error(message.str());
-  }
+  Result<std::vector<int>> found = nodes_in(model, lower, upper);
+  if (!found) return found.status();
+  const std::vector<int>& nodes = found.value();
   for (int node : nodes) {
     if (Status status = prescribe_axis_position(node, axis, model.rest_positions(axis, node) + displacement); !status) {
       return status;
@@ -86,12 +93,9 @@ Status Constraints::prescribe_displacement(const Model& model, int node, const E
 
 Status Constraints::prescribe_box_displacement(const Model& model, const Eigen::Vector3d& lower,
                                                const Eigen::Vector3d& upper, const Eigen::Vector3d& displacement) {
-  const std::vector<int> nodes = model.nodes_in_box(lower, upper);
-  if (nodes.empty()) {
-    std::ostringstream message;
-    message << "no node lies in the box (" << lower.transpose() << ") - (" << upper.transpose() << ") m";
-    return Status::error(message.str());
-  }
+  Result<std::vector<int>> found = nodes_in(model, lower, upper);
+  if (!found) return found.status();
+  const std::vector<int>& nodes = found.value();
   for (int node : nodes) {
     if (Status status = prescribe_displacement(model, node, displacement); !status) return status;
   }
