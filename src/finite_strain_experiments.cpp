@@ -54,20 +54,14 @@ Result<Constraints> constraints_at(Experiment experiment, const Model& model, co
   const Eigen::Vector3d size = cells.cast<double>().cwiseProduct(model.cell_size);
   switch (experiment) {
     case Experiment::kUniaxial: {
-      const double tolerance = 1e-9 * model.cell_size.x();
-      const Eigen::Vector3d far(1e9, 1e9, 1e9);
-      const Eigen::Vector3d origin_x = model.origin + Eigen::Vector3d(tolerance, 0, 0);
-      const Eigen::Vector3d end_x = model.origin + Eigen::Vector3d(size.x() - tolerance, 0, 0);
-      if (Status s = constraints.prescribe_box_axis_displacement(model, -far, Eigen::Vector3d(origin_x.x(), 1e9, 1e9),
-                                                                 0, 0.0);
-          !s) {
-        return s;
-      }
-      if (Status s = constraints.prescribe_box_axis_displacement(model, Eigen::Vector3d(end_x.x(), -1e9, -1e9), far, 0,
-                                                                 strain * size.x());
-          !s) {
-        return s;
-      }
+      // the platens: the faces x = 0 and x = L held along x, the second moved by the strain (the
+      // targets are finite and the nodes the body's: these cannot fail)
+      for_face_nodes(model, 0, 0, [&](int n) {
+        (void)constraints.prescribe_axis_position(n, 0, model.rest_positions(0, n));
+      });
+      for_face_nodes(model, 0, cells.x(), [&](int n) {
+        (void)constraints.prescribe_axis_position(n, 0, model.rest_positions(0, n) + strain * size.x());
+      });
       if (Status s = hold_face_in_plane(model, cells, 0, constraints); !s) return s;
       break;
     }
