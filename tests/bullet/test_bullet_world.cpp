@@ -77,12 +77,13 @@ TEST(BulletWorld, DroppedBoxComesToRestOnTheBlockCarriedByItsContactForce) {
 
 // A frictionless kinematic plate wider than the block presses it by 1% of its height; the block
 // stands on a frictionless plane: uniaxial stress. Returns the plate's and the floor's forces.
-std::pair<double, double> flat_punch(CellModel model) {
+std::pair<double, double> flat_punch(CellModel model, CellLaw law = CellLaw::kNeoHookean) {
   BulletScene scene(Eigen::Vector3d::Zero());
   btRigidBody* floor = scene.add_floor();
   bullet::SoftBodySettings settings = block({4, 4, 4}, kCell, tissue(1e5, 50.0));
   settings.contact.friction = 0.0;
   settings.lattice.model = model;
+  settings.law = law;
   bullet::SoftBody* soft = scene.add_soft(settings);
   EXPECT_NE(soft, nullptr);
   const double height = 4 * kCell;
@@ -113,9 +114,28 @@ TEST(BulletWorld, FlatPunchForceIsYoungsModulusTimesAreaTimesStrain) {
 // frictionless support takes them up and the block gives way: its force comes out far below E A
 // strain. The exact-bending model's twist term is there for this (docs/model-exact-bending.md).
 TEST(BulletWorld, PaperModelOnFrictionlessSupportsGivesWayThroughItsZeroModes) {
-  const auto [plate, floor] = flat_punch(CellModel::kBaudet2007);
+  const auto [plate, floor] = flat_punch(CellModel::kBaudet2007, CellLaw::kSprings);
   EXPECT_LT(plate, 0.8 * kPunchForce);
   EXPECT_GT(plate, 0.3 * kPunchForce);
+}
+
+// The neo-Hookean law (the plugin's default) runs on exact-bending cells whatever lattice.model
+// says: the paper's cells buckle under compression with it. So a user who keeps LatticeDesc's
+// default cell model gets a block that carries the punch.
+TEST(BulletWorld, NeoHookeanLawRunsOnExactBendingCellsWhateverTheLatticeSays) {
+  for (const CellLaw law : {CellLaw::kNeoHookean, CellLaw::kSprings}) {
+    BulletScene scene(Eigen::Vector3d::Zero());
+    bullet::SoftBodySettings settings = block({2, 2, 2}, kCell, tissue(1e5, 50.0));
+    settings.lattice.model = CellModel::kBaudet2007;
+    settings.law = law;
+    bullet::SoftBody* soft = scene.add_soft(settings);
+    ASSERT_NE(soft, nullptr);
+    EXPECT_EQ(soft->model().cell_model,
+              law == CellLaw::kNeoHookean ? CellModel::kExactBending : CellModel::kBaudet2007);
+    EXPECT_EQ(soft->model().cell_law, law);
+  }
+  const auto [plate, floor] = flat_punch(CellModel::kBaudet2007);
+  EXPECT_NEAR(plate, kPunchForce, 0.03 * kPunchForce);
 }
 
 TEST(BulletWorld, MomentumIsExchangedNotMadeWhenASphereHitsAFreeBlock) {

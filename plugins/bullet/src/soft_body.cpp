@@ -44,6 +44,8 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   }
   LatticeDesc lattice = settings.lattice;
   lattice.law = settings.law;
+  // the paper's cells have non-affine modes that the law's compression softens into buckling
+  if (settings.law == CellLaw::kNeoHookean) lattice.model = CellModel::kExactBending;
   Result<Model> model = build_model(lattice);
   if (!model) return model.status();
   std::unique_ptr<SoftBody> body(new SoftBody());
