@@ -272,6 +272,16 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
               std::to_string(settings.initial_load_steps) + ", " + std::to_string(settings.max_load_steps) + ", " +
               std::to_string(settings.max_newton_iterations) + ")";
   }
+  if (invalid.empty() && settings.start_from_state) {
+    if (!(settings.start_load_fraction >= 0.0 && settings.start_load_fraction <= 1.0)) {
+      invalid = "start_load_fraction = " + std::to_string(settings.start_load_fraction) + ": must be in [0, 1]";
+    } else {
+      invalid = node_columns_error(model, state.positions, "state.positions (start_from_state)", false);
+      if (invalid.empty() && !state.positions.allFinite()) {
+        invalid = "state.positions (start_from_state) holds a number that is not finite";
+      }
+    }
+  }
   if (!invalid.empty()) {  // nothing read, the state unchanged
     report.message = invalid;
     return report;
@@ -307,8 +317,11 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
     report.message = too_large.what();
     return report;
   }
-  Eigen::Matrix3Xd x = model.rest_positions;
-  Eigen::Matrix3Xd start_driven = model.rest_positions;
+  Eigen::Matrix3Xd x = settings.start_from_state ? state.positions : model.rest_positions;
+  const Eigen::Matrix3Xd start_driven = x;
+  // the load fraction at the ramp's parameter t in [0, 1]
+  const double first_fraction = settings.start_from_state ? settings.start_load_fraction : 0.0;
+  const auto load_fraction = [first_fraction](double t) { return first_fraction + t * (1.0 - first_fraction); };
   double done = 0.0;
   double increment = 1.0 / settings.initial_load_steps;
   const double smallest = 1.0 / settings.max_load_steps;
@@ -319,7 +332,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
       if (problem.driven[i]) trial(i) = start_driven(i) + next * (target(i) - start_driven(i));
     }
     report.message.clear();
-    if (stable_equilibrium(problem, scaled_loads(loads, next), reference_force, settings, *assembler, trial, report)) {
+    if (stable_equilibrium(problem, scaled_loads(loads, load_fraction(next)), reference_force, settings, *assembler, trial, report)) {
       x = trial;
       done = next;
       ++report.load_steps;
@@ -328,7 +341,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
     }
     if (increment <= smallest * 1.000001) {
       std::ostringstream message;
-      message << "static solve did not converge at load fraction " << next << " (residual " << report.residual
+      message << "static solve did not converge at load fraction " << load_fraction(next) << " (residual " << report.residual
               << " N after " << report.newton_iterations << " Newton iterations, smallest increment "
               << increment << ")";
       if (!report.message.empty()) message << ": " << report.message;

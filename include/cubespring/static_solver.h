@@ -21,6 +21,12 @@ struct StaticSettings {
   /// saddle or a maximum of the energy): the solver leaves it along that direction, downhill, and
   /// solves again, at most this many times in a solve; 0 reports it unstable at once.
   int max_instability_escapes = 16;
+  /// Continuation: start from state.positions (an earlier solution) instead of the rest
+  /// positions. The driven nodes move from where they are in state to their targets, and the
+  /// loads ramp from start_load_fraction of their full value (the fraction that state was an
+  /// equilibrium of; 0 when it carried none) to full.
+  bool start_from_state = false;
+  double start_load_fraction = 0.0;  ///< in [0, 1]; read with start_from_state
 };
 
 struct StaticReport {

@@ -98,5 +98,42 @@ TEST(StaticSolver, WithoutEscapesAnUnstableEquilibriumIsReported) {
   EXPECT_NE(refused.message.find("max_instability_escapes"), std::string::npos) << refused.message;
 }
 
+
+// Continuation: solved from the equilibrium at 10% compression, the 20% one is the same state as
+// solved from rest (a stable, unique solution here: nu = 0.3, small enough not to buckle); and a cube under its own weight continued from half of it reaches the same
+// state as from rest.
+TEST(StaticSolver, ContinuesFromAnEarlierSolution) {
+  const Compressed at_10 = squeezed_cube(3, -0.1), at_20 = squeezed_cube(3, -0.2);
+  State from_rest = rest_state(at_20.model);
+  const StaticReport direct = solve_static(at_20.model, at_20.constraints, Loads{}, StaticSettings{}, from_rest);
+  ASSERT_TRUE(direct.converged) << direct.message;
+  State continued = rest_state(at_10.model);
+  ASSERT_TRUE(solve_static(at_10.model, at_10.constraints, Loads{}, StaticSettings{}, continued).converged);
+  StaticSettings settings;
+  settings.start_from_state = true;
+  const StaticReport onward = solve_static(at_20.model, at_20.constraints, Loads{}, settings, continued);
+  ASSERT_TRUE(onward.converged) << onward.message;
+  EXPECT_LT((continued.positions - from_rest.positions).cwiseAbs().maxCoeff(), 1e-9);
+
+  Loads weight;
+  weight.gravity = Eigen::Vector3d(0, 0, -9.81);
+  Constraints base(at_20.model);
+  ASSERT_TRUE(base.fix_box(at_20.model, Eigen::Vector3d::Constant(-1), Eigen::Vector3d(1, 1, 1e-9)));
+  State half = rest_state(at_20.model), whole = rest_state(at_20.model);
+  Loads half_weight;
+  half_weight.gravity = 0.5 * weight.gravity;
+  ASSERT_TRUE(solve_static(at_20.model, base, half_weight, StaticSettings{}, half).converged);
+  ASSERT_TRUE(solve_static(at_20.model, base, weight, StaticSettings{}, whole).converged);
+  settings.start_load_fraction = 0.5;
+  ASSERT_TRUE(solve_static(at_20.model, base, weight, settings, half).converged);
+  EXPECT_LT((half.positions - whole.positions).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT((whole.positions - at_20.model.rest_positions).cwiseAbs().maxCoeff(), 1e-4);  // it did sag
+
+  settings.start_load_fraction = 1.5;
+  const StaticReport refused = solve_static(at_20.model, base, weight, settings, half);
+  EXPECT_FALSE(refused.converged);
+  EXPECT_NE(refused.message.find("start_load_fraction"), std::string::npos) << refused.message;
+}
+
 }  // namespace
 }  // namespace cubespring
