@@ -64,9 +64,9 @@ Status check_settings(Experiment experiment, const ExperimentSettings& s) {
     if (!std::isfinite(s.strain) || s.strain == 0.0 || s.strain < (shear ? -1.0 : -0.6) || s.strain > 1.0) {
       std::ostringstream message;
       message << "strain = " << s.strain << ": " << experiment_name(experiment) << " takes "
-              << (shear ? "a shear gamma in [-1, 1]" : experiment == Experiment::kUniaxial
-                                                           ? "a nominal strain (stretch - 1) in [-0.6, 1]"
-                                                           : "a volume change (J - 1) in [-0.6, 1]")
+              << (shear                                      ? "a shear gamma in [-1, 1]"
+                  : experiment == Experiment::kHydrostatic ? "a volume change (J - 1) in [-0.6, 1]"
+                                                           : "a nominal strain (stretch - 1) in [-0.6, 1]")
               << ", not 0";
       return Status::error(message.str());
     }
@@ -145,6 +145,32 @@ double top_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, co
   return sum / count;
 }
 
+// The body's volume change (deformed / rest - 1) and its cells' least volume ratio.
+void measure_volume(ExperimentResult& result) {
+  const Model& model = result.model;
+  const double rest_volume = body_volume(model, model.rest_positions);
+  result.volume_change = body_volume(model, result.state.positions) / rest_volume - 1.0;
+  double least = std::numeric_limits<double>::infinity();
+  for (int c = 0; c < model.num_cells(); ++c) {
+    least = std::min(least, cell_signed_volume(model, result.state.positions, c) / model.rest_cell_volume());
+  }
+  result.least_cell_volume_ratio = least;
+}
+
+// The x displacement at the centre of the face x = L: the mean of the face's nodes nearest to it.
+double side_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells) {
+  double sum = 0.0;
+  int count = 0;
+  for (int n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector3i& index = model.node_grid_index[n];
+    if (index.x() != cells.x()) continue;
+    if (std::abs(2 * index.y() - cells.y()) > 1 || std::abs(2 * index.z() - cells.z()) > 1) continue;
+    sum += u(0, n);
+    ++count;
+  }
+  return sum / count;
+}
+
 // The self-weight block's base (z = 0): bonded, or on a frictionless floor, which holds the base
 // nodes along z only (and two of them against sliding and turning: hold_face_in_plane).
 Status support_base(const Model& model, const Eigen::Vector3i& cells, Support support, Constraints& constraints) {
@@ -176,6 +202,7 @@ const char* experiment_name(Experiment experiment) {
     case Experiment::kUniaxial: return "uniaxial";
     case Experiment::kSimpleShear: return "simple-shear";
     case Experiment::kHydrostatic: return "hydrostatic";
+    case Experiment::kBondedCompression: return "bonded-compression";
   }
   return "unknown";
 }
@@ -183,12 +210,12 @@ const char* experiment_name(Experiment experiment) {
 Result<Experiment> parse_experiment(const std::string& name) {
   for (Experiment e : {Experiment::kElongation, Experiment::kShear, Experiment::kInflation, Experiment::kCantilever,
                        Experiment::kSelfWeight, Experiment::kUniaxial, Experiment::kSimpleShear,
-                       Experiment::kHydrostatic}) {
+                       Experiment::kHydrostatic, Experiment::kBondedCompression}) {
     if (name == experiment_name(e)) return e;
   }
   return Status::error("unknown experiment '" + name +
-                       "': expected elongation, shear, inflation, cantilever, self-weight, uniaxial, simple-shear or "
-                       "hydrostatic");
+                       "': expected elongation, shear, inflation, cantilever, self-weight, uniaxial, simple-shear, "
+                       "hydrostatic or bonded-compression");
 }
 
 const char* shear_control_name(ShearControl control) {
@@ -222,9 +249,17 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
   const double b = bulk_modulus(material);
 
   if (is_finite_strain_experiment(experiment)) {
-    Result<std::vector<CurvePoint>> curve = finite_strain_curve(experiment, model, settings, result.state);
+    StaticReport solver;
+    Result<std::vector<CurvePoint>> curve = finite_strain_curve(experiment, model, settings, result.state, solver);
+    result.load_steps = solver.load_steps;
+    result.newton_iterations = solver.newton_iterations;
     if (!curve) return curve.status();
     result.curve = std::move(curve).value();
+    if (experiment == Experiment::kBondedCompression) {
+      measure_volume(result);
+      result.platen_force = face_reaction(model, result.state, 2, cells.z(), 2);
+      result.bulge = side_centre_displacement(model, displacements(model, result.state), cells);
+    }
     return result;
   }
 
@@ -295,6 +330,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
     case Experiment::kUniaxial:
     case Experiment::kSimpleShear:
     case Experiment::kHydrostatic:
+    case Experiment::kBondedCompression:
       break;  // finite_strain_curve's, above
   }
 
@@ -360,18 +396,13 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
     }
     case Experiment::kSelfWeight: {
       result.top_centre_uz = top_centre_displacement(model, u, cells);
-      const double rest_volume = body_volume(model, model.rest_positions);
-      result.volume_change = body_volume(model, result.state.positions) / rest_volume - 1.0;
-      double least = std::numeric_limits<double>::infinity();
-      for (int c = 0; c < model.num_cells(); ++c) {
-        least = std::min(least, cell_signed_volume(model, result.state.positions, c) / model.rest_cell_volume());
-      }
-      result.least_cell_volume_ratio = least;
+      measure_volume(result);
       break;
     }
     case Experiment::kUniaxial:
     case Experiment::kSimpleShear:
     case Experiment::kHydrostatic:
+    case Experiment::kBondedCompression:
       break;
   }
   return result;

@@ -5,6 +5,7 @@
 #include "finite_strain_experiments.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "cubespring/cell_law.h"
@@ -65,6 +66,16 @@ Result<Constraints> constraints_at(Experiment experiment, const Model& model, co
       if (Status s = hold_face_in_plane(model, cells, 0, constraints); !s) return s;
       break;
     }
+    case Experiment::kBondedCompression: {
+      // the plates: every node of the face z = 0 held, of the face z = H moved along z
+      for (int n = 0; n < model.num_nodes(); ++n) {
+        const int at = model.node_grid_index[n].z();
+        if (at != 0 && at != cells.z()) continue;
+        const Eigen::Vector3d displacement(0, 0, at == 0 ? 0.0 : strain * size.z());
+        if (Status s = constraints.prescribe_displacement(model, n, displacement); !s) return s;
+      }
+      break;
+    }
     case Experiment::kSimpleShear:
     case Experiment::kHydrostatic: {
       const double stretch = std::cbrt(1.0 + strain);
@@ -83,24 +94,33 @@ Result<Constraints> constraints_at(Experiment experiment, const Model& model, co
   return constraints;
 }
 
-// The nominal stress the constraints carry: the force on the face x = L (uniaxial, hydrostatic)
-// or z = H (simple shear) along x, over its rest area. At equilibrium the constraints' reaction
-// is minus the elastic force on their nodes.
-double measured_stress(Experiment experiment, const Model& model, const Eigen::Vector3i& cells, const State& state) {
+}  // namespace
+
+double face_reaction(const Model& model, const State& state, int face_axis, int at, int direction) {
   Eigen::Matrix3Xd forces;
   ForceWorkspace ws;
   compute_forces(model, state, Loads{}, ForceOptions{false, 1}, ws, forces);
-  const int face_axis = experiment == Experiment::kSimpleShear ? 2 : 0;
   double force = 0.0;
-  for_face_nodes(model, face_axis, cells[face_axis], [&](int n) { force -= forces(0, n); });
+  for_face_nodes(model, face_axis, at, [&](int n) { force -= forces(direction, n); });
+  return force;
+}
+
+namespace {
+
+// The nominal stress the constraints carry: the force on the face x = L (uniaxial, hydrostatic)
+// along x, z = H along x (simple shear) or along z (bonded compression), over its rest area.
+double measured_stress(Experiment experiment, const Model& model, const Eigen::Vector3i& cells, const State& state) {
+  const int face_axis = experiment == Experiment::kSimpleShear || experiment == Experiment::kBondedCompression ? 2 : 0;
+  const int direction = experiment == Experiment::kBondedCompression ? 2 : 0;
   const Eigen::Vector3d size = cells.cast<double>().cwiseProduct(model.cell_size);
-  return force / (size.prod() / size[face_axis]);
+  return face_reaction(model, state, face_axis, cells[face_axis], direction) / (size.prod() / size[face_axis]);
 }
 
 double expected_stress(Experiment experiment, const Material& material, double strain) {
   switch (experiment) {
     case Experiment::kUniaxial: return neo_hookean_uniaxial_stress(material, 1.0 + strain);
     case Experiment::kSimpleShear: return neo_hookean_simple_shear_stress(material, strain);
+    case Experiment::kBondedCompression: return std::numeric_limits<double>::quiet_NaN();
     default: return neo_hookean_hydrostatic_stress(material, 1.0 + strain);
   }
 }
@@ -109,7 +129,7 @@ double expected_stress(Experiment experiment, const Material& material, double s
 
 bool is_finite_strain_experiment(Experiment experiment) {
   return experiment == Experiment::kUniaxial || experiment == Experiment::kSimpleShear ||
-         experiment == Experiment::kHydrostatic;
+         experiment == Experiment::kHydrostatic || experiment == Experiment::kBondedCompression;
 }
 
 Status hold_face_in_plane(const Model& model, const Eigen::Vector3i& cells, int axis, Constraints& constraints) {
@@ -129,16 +149,23 @@ Status hold_face_in_plane(const Model& model, const Eigen::Vector3i& cells, int 
 }
 
 Result<std::vector<CurvePoint>> finite_strain_curve(Experiment experiment, const Model& model,
-                                                    const ExperimentSettings& settings, State& state) {
+                                                    const ExperimentSettings& settings, State& state,
+                                                    StaticReport& solver) {
   std::vector<CurvePoint> curve;
+  state = rest_state(model);
   for (int k = 1; k <= settings.curve_points; ++k) {
     const double strain = settings.strain * k / settings.curve_points;
     Result<Constraints> constraints = constraints_at(experiment, model, settings.cells, strain);
     if (!constraints) return constraints.status();
-    state = rest_state(model);
+    // from the point before: a continuation, which also keeps to one branch where the lattice
+    // has several equilibria
     StaticSettings static_settings;
-    static_settings.initial_load_steps = 4;
+    static_settings.start_from_state = true;
+    static_settings.initial_load_steps = k == 1 ? 4 : 1;
     const StaticReport report = solve_static(model, constraints.value(), Loads{}, static_settings, state);
+    solver.load_steps += report.load_steps;
+    solver.newton_iterations += report.newton_iterations;
+    solver.unstable_equilibria += report.unstable_equilibria;
     if (!report.converged) {
       std::ostringstream message;
       message << experiment_name(experiment) << " at strain " << strain << ": " << report.message;

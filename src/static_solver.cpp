@@ -10,9 +10,9 @@
 #include <string>
 
 #include <Eigen/Eigenvalues>
-#include <Eigen/SparseCholesky>
 
 #include "cubespring/stiffness.h"
+#include "grid_ldlt.h"
 #include "input_checks.h"
 
 namespace cubespring {
@@ -62,8 +62,6 @@ Eigen::VectorXd residual(const Problem& problem, const Loads& loads, const Eigen
 // block of the paper's cells on a frictionless floor, nu = 0).
 constexpr double kNegativeCurvature = 1e-3;
 
-using Factorisation = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>;
-
 // The exact stiffness at x with identity rows and columns on the driven degrees of freedom.
 Eigen::SparseMatrix<double> free_stiffness(const Problem& problem, StiffnessAssembler& assembler,
                                            const Eigen::Matrix3Xd& x) {
@@ -78,14 +76,6 @@ Eigen::SparseMatrix<double> free_stiffness(const Problem& problem, StiffnessAsse
   return k;
 }
 
-// Factorises k + shift I; false when that fails.
-bool factorise(const Eigen::SparseMatrix<double>& k, double shift, Factorisation& solver) {
-  Eigen::SparseMatrix<double> shifted = k;
-  for (int i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) += shift;
-  solver.compute(shifted);
-  return solver.info() == Eigen::Success;
-}
-
 double mean_diagonal(const Eigen::SparseMatrix<double>& k) { return k.diagonal().cwiseAbs().mean(); }
 
 // Newton from x at fixed loads; returns false when it does not converge. The line search takes
@@ -97,7 +87,7 @@ double mean_diagonal(const Eigen::SparseMatrix<double>& k) { return k.diagonal()
 bool newton(const Problem& problem, const Loads& loads, double reference_force, const StaticSettings& settings,
             StiffnessAssembler& assembler, Eigen::Matrix3Xd& x, StaticReport& report, bool descend) {
   ForceWorkspace ws;
-  Factorisation solver;
+  GridLDLT solver(problem.model);
   Eigen::VectorXd r = residual(problem, loads, x, ws);
   const double tolerance = settings.tolerance * reference_force;
   const double cell = problem.model.cell_size.minCoeff();
@@ -111,14 +101,14 @@ bool newton(const Problem& problem, const Loads& loads, double reference_force, 
     const Eigen::SparseMatrix<double> k = free_stiffness(problem, assembler, x);
     const double mean = mean_diagonal(k);
     double shift = kShiftFraction * mean;
-    if (!factorise(k, shift, solver)) return false;
-    const bool indefinite = descend && solver.vectorD().minCoeff() < 0.0;
+    if (!solver.factorise(k, shift)) return false;
+    const bool indefinite = descend && solver.pivots().minCoeff() < 0.0;
     // the least shift, within a factor of 2, that makes it positive definite: a larger one would
     // shorten the step along the direction that leads downhill
     if (indefinite) shift = 1e-3 * kNegativeCurvature * mean;
     for (int tries = 0; indefinite && tries < 60; ++tries) {
-      if (!factorise(k, shift, solver)) return false;
-      if (solver.vectorD().minCoeff() > 0.0) break;
+      if (!solver.factorise(k, shift)) return false;
+      if (solver.pivots().minCoeff() > 0.0) break;
       shift *= 2.0;
     }
     Eigen::VectorXd dx = solver.solve(r);
@@ -161,19 +151,17 @@ bool newton(const Problem& problem, const Loads& loads, double reference_force, 
 
 // A direction of negative curvature of the exact stiffness K at x on the free dofs (scaled to move
 // no node more than a tenth of a cell), or an empty vector when there is none: the equilibrium is
-// stable. From the most negative pivot d_i of P (K + s I) P^T = L D L^T, s = kNegativeCurvature
+// stable. From the most negative pivot d_i of P (K + s I) P^T = L D L^T (GridLDLT), s = kNegativeCurvature
 // times the mean diagonal: v = P^T L^-T e_i has v^T (K + s I) v = d_i < 0.
 Eigen::VectorXd negative_curvature(const Problem& problem, StiffnessAssembler& assembler, const Eigen::Matrix3Xd& x) {
   const Eigen::SparseMatrix<double> k = free_stiffness(problem, assembler, x);
   const double mean = mean_diagonal(k);
-  Factorisation solver;
-  if (!factorise(k, kNegativeCurvature * mean, solver)) return {};
-  const Eigen::VectorXd pivots = solver.vectorD();
+  GridLDLT solver(problem.model);
+  if (!solver.factorise(k, kNegativeCurvature * mean)) return {};
+  const Eigen::VectorXd pivots = solver.pivots();
   Eigen::Index most_negative = 0;
   if (!(pivots.minCoeff(&most_negative) < 0.0)) return {};
-  Eigen::VectorXd unit = Eigen::VectorXd::Zero(pivots.size());
-  unit[most_negative] = 1.0;
-  Eigen::VectorXd direction = solver.permutationPinv() * Eigen::VectorXd(solver.matrixU().solve(unit));
+  Eigen::VectorXd direction = solver.pivot_direction(most_negative);
   for (Eigen::Index i = 0; i < direction.size(); ++i) {
     if (problem.driven[i]) direction[i] = 0.0;
   }
@@ -227,6 +215,32 @@ bool stable_equilibrium(const Problem& problem, const Loads& loads, double refer
   }
 }
 
+// The tangent predictor of an increment: the free dofs' response, on the stiffness at x, to the
+// driven dofs' move from x to `trial` and to the loads' increment (trial's free dofs are x's).
+// Without it the increment's whole move first lands on the cells next to the driven nodes, which
+// can crush them into a state where the stiffness is indefinite and Newton crawls. Kept only
+// where the stiffness is positive definite and it lowers the energy.
+void predict(const Problem& problem, const Loads& loads, StiffnessAssembler& assembler, const Eigen::Matrix3Xd& x,
+             Eigen::Matrix3Xd& trial) {
+  SparseMatrix assembled;
+  assembler.assemble(problem.model, x, StiffnessKind::kExact, 1.0, 0.0, assembled);
+  const Eigen::SparseMatrix<double> k = assembled;
+  const Eigen::Matrix3Xd move = trial - x;  // nonzero on the driven dofs only
+  ForceWorkspace ws;
+  Eigen::VectorXd rhs = residual(problem, loads, x, ws) - k * Eigen::Map<const Eigen::VectorXd>(move.data(), move.size());
+  for (Eigen::Index i = 0; i < rhs.size(); ++i) {
+    if (problem.driven[i]) rhs[i] = 0.0;
+  }
+  const Eigen::SparseMatrix<double> k_free = free_stiffness(problem, assembler, x);
+  GridLDLT solver(problem.model);
+  if (!solver.factorise(k_free, kShiftFraction * mean_diagonal(k_free)) || !(solver.pivots().minCoeff() > 0.0)) return;
+  const Eigen::VectorXd dx = solver.solve(rhs);
+  if (!dx.allFinite()) return;
+  const Eigen::Matrix3Xd predicted = trial + Eigen::Map<const Eigen::Matrix3Xd>(dx.data(), 3, x.cols());
+  const double energy = potential_energy(problem.model, loads, predicted);
+  if (std::isfinite(energy) && energy < potential_energy(problem.model, loads, trial)) trial = predicted;
+}
+
 // Whether the driven degrees of freedom hold the body: no rigid motion (3 translations, 3
 // rotations about the centroid) leaves all of them in place. Only then is an equilibrium's
 // stability judged: a free body's rotations under dead loads have a curvature of their own.
@@ -246,6 +260,20 @@ bool holds_the_body(const Model& model, const std::vector<std::uint8_t>& driven)
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eigen(gram);
   return eigen.eigenvalues()[0] > 1e-9 * std::max(eigen.eigenvalues()[5], 1e-300);
+}
+
+// The stiffness [N/m] of the stiffest spring or cell: a nearly incompressible material's cells
+// (their bulk modulus B over a cell, B h, with the neo-Hookean law) can be far stiffer than its
+// springs, and the residual's round-off floor grows with them.
+double stiffness_scale(const Model& model) {
+  double stiffest = *std::max_element(model.spring_stiffness.begin(), model.spring_stiffness.end());
+  if (model.cell_law == CellLaw::kNeoHookean) {
+    for (const Material& material : model.materials) {
+      const double axial_modulus = bulk_modulus(material) + 4.0 / 3.0 * shear_modulus(material);
+      stiffest = std::max(stiffest, axial_modulus * model.cell_size.maxCoeff());
+    }
+  }
+  return stiffest;
 }
 
 }  // namespace
@@ -301,12 +329,9 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   double reference_force = (loads.gravity.norm() * model.mass).norm();
   if (loads.nodal_forces.size() > 0) reference_force = std::max(reference_force, loads.nodal_forces.norm());
   const double driven_motion = (target - model.rest_positions).norm();
-  if (driven_motion > 0.0) {
-    const double stiffest = *std::max_element(model.spring_stiffness.begin(), model.spring_stiffness.end());
-    reference_force = std::max(reference_force, stiffest * driven_motion);
-  }
-  // residuals cannot fall below the round-off of the largest spring forces
-  const double stiffest = *std::max_element(model.spring_stiffness.begin(), model.spring_stiffness.end());
+  const double stiffest = stiffness_scale(model);
+  if (driven_motion > 0.0) reference_force = std::max(reference_force, stiffest * driven_motion);
+  // residuals cannot fall below the round-off of the largest elastic forces
   const double round_off = 1e-13 * stiffest * model.cell_size.maxCoeff() * std::sqrt(num_nodes);
   reference_force = std::max(reference_force, round_off / settings.tolerance);
 
@@ -332,6 +357,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
       if (problem.driven[i]) trial(i) = start_driven(i) + next * (target(i) - start_driven(i));
     }
     report.message.clear();
+    predict(problem, scaled_loads(loads, load_fraction(next)), *assembler, x, trial);
     if (stable_equilibrium(problem, scaled_loads(loads, load_fraction(next)), reference_force, settings, *assembler, trial, report)) {
       x = trial;
       done = next;

@@ -158,7 +158,17 @@ nlohmann::json report_json(const ExperimentResult& r) {
     }
     j["nodes"] = std::move(nodes);
   }
-  if (!r.curve.empty()) {
+  if (r.platen_force) {  // no closed form: the curve's stress alone
+    nlohmann::json curve = nlohmann::json::array();
+    for (const CurvePoint& point : r.curve) curve.push_back({{"strain", point.strain}, {"stress", point.stress}});
+    j["curve"] = std::move(curve);
+    j["inputs"]["points"] = s.curve_points;
+    j["measured"]["stress"] = r.curve.back().stress;
+    j["measured"]["platen_force"] = *r.platen_force;
+    j["measured"]["bulge"] = *r.bulge;
+    j["measured"]["volume_change"] = *r.volume_change;
+    j["measured"]["least_cell_volume_ratio"] = *r.least_cell_volume_ratio;
+  } else if (!r.curve.empty()) {
     nlohmann::json curve = nlohmann::json::array();
     for (const CurvePoint& point : r.curve) {
       curve.push_back({{"strain", point.strain},
@@ -204,6 +214,15 @@ void report_table(const ExperimentResult& r) {
                 100 * (*r.tip_deflection / *r.euler_bernoulli - 1));
     std::printf("  %-16s %14.6e  (lattice %+.2f%%)\n", "Timoshenko", *r.timoshenko,
                 100 * (*r.tip_deflection / *r.timoshenko - 1));
+    return;
+  }
+  if (r.platen_force) {
+    std::printf("  %12s %16s\n", "stretch - 1", "P_zz [Pa]");
+    for (const CurvePoint& point : r.curve) std::printf("  %12.4f %16.6g\n", point.strain, point.stress);
+    std::printf("  %-24s %14.6g N\n", "platen force", *r.platen_force);
+    std::printf("  %-24s %14.6e m\n", "bulge (x = L centre)", *r.bulge);
+    std::printf("  %-24s %+14.4f %%\n", "volume change", 100 * *r.volume_change);
+    std::printf("  %-24s %14.4f\n", "least cell volume ratio", *r.least_cell_volume_ratio);
     return;
   }
   if (!r.curve.empty()) {
@@ -273,6 +292,7 @@ int run_measure(const MeasureOptions& o) {
   const Experiment chosen = experiment.value();
   const std::string default_cells = chosen == Experiment::kCantilever   ? "16,4,4"
                                     : chosen == Experiment::kSelfWeight ? "12,12,12"
+                                    : chosen == Experiment::kBondedCompression ? "8,8,8"
                                     : chosen == Experiment::kUniaxial || chosen == Experiment::kSimpleShear ||
                                             chosen == Experiment::kHydrostatic
                                         ? "4,4,4"
@@ -281,6 +301,7 @@ int run_measure(const MeasureOptions& o) {
     if (chosen == Experiment::kUniaxial) settings.strain = -0.4;
     if (chosen == Experiment::kSimpleShear) settings.strain = 0.5;
     if (chosen == Experiment::kHydrostatic) settings.strain = -0.1;
+    if (chosen == Experiment::kBondedCompression) settings.strain = -0.1825;  // the silicone experiment's
   }
   Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
   Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
@@ -340,23 +361,23 @@ Command add_measure_command(CLI::App& app) {
                                                 "neo-Hookean law");
   cmd->add_option("experiment", options->experiment,
                   "elongation, shear, inflation, cantilever or self-weight; finite-strain curves: uniaxial, "
-                  "simple-shear or hydrostatic")
+                  "simple-shear, hydrostatic or bonded-compression")
       ->required()
       ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever", "self-weight", "uniaxial",
-                             "simple-shear", "hydrostatic"}));
+                             "simple-shear", "hydrostatic", "bonded-compression"}));
   cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->capture_default_str();
   cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->capture_default_str();
   cmd->add_option("--density", options->density, "density [kg/m^3]")->capture_default_str();
   cmd->add_option("--cells", options->cells,
                   "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12; the curves "
-                  "4,4,4)");
+                  "4,4,4; bonded-compression 8,8,8)");
   cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]")->capture_default_str();
   CLI::Option* strain = cmd->add_option("--strain", options->strain,
                                         "load as the continuum strain it causes (small deformation); the curves' "
                                         "end: uniaxial stretch - 1 (default -0.4), simple-shear gamma (0.5), "
-                                        "hydrostatic J - 1 (-0.1)")
+                                        "hydrostatic J - 1 (-0.1), bonded-compression stretch - 1 along z (-0.1825)")
                             ->capture_default_str();
-  cmd->add_option("--points", options->points, "uniaxial, simple-shear, hydrostatic: points on the curve")
+  cmd->add_option("--points", options->points, "the curves (uniaxial .. bonded-compression): points on the curve")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")

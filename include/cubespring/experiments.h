@@ -31,8 +31,13 @@ enum class Experiment {
   kUniaxial,
   /// simple shear u_x = gamma z imposed on every boundary node (strain: gamma);
   kSimpleShear,
-  /// a uniform dilatation imposed on every boundary node (strain: the volume change, J - 1).
+  /// a uniform dilatation imposed on every boundary node (strain: the volume change, J - 1);
   kHydrostatic,
+  /// compression (or tension) between two rigid plates bonded to the faces z = 0 and z = H, the
+  /// top one moved along z by strain H (strain: the nominal strain; the curve's stress is the
+  /// plate's force over the rest area, P_zz, with no closed form: `expected` is NaN); also the
+  /// volume change, the cells' least volume ratio and the bulge.
+  kBondedCompression,
 };
 const char* experiment_name(Experiment experiment);
 Result<Experiment> parse_experiment(const std::string& name);
@@ -63,7 +68,8 @@ struct ExperimentSettings {
   /// each side shrinks by S (inflation, P = 3 B S). Not used by the cantilever and self-weight.
   /// The finite-strain experiments take it as their end point (Experiment), in [-0.6, 1], not 0.
   double strain = 1e-4;
-  /// Finite-strain experiments: the curve's points, equally spaced from 0 to strain (>= 1).
+  /// Finite-strain experiments: the curve's points, equally spaced from 0 to strain (>= 1), each
+  /// solved from the one before.
   int curve_points = 8;
   double gravity = 9.81;                          ///< cantilever and self-weight [m/s^2], along -z
   ShearControl shear_control = ShearControl::kDisplacement;
@@ -110,6 +116,11 @@ struct ExperimentResult {
   std::optional<double> top_centre_uz;
   std::optional<double> volume_change;
   std::optional<double> least_cell_volume_ratio;
+  /// Bonded compression: the force of the top plate on the block along z [N] (negative when it
+  /// compresses), and the bulge: the x displacement of the centre of the face x = L [m] (the mean
+  /// of the 1, 2 or 4 nodes nearest it).
+  std::optional<double> platen_force;
+  std::optional<double> bulge;
   /// Finite-strain experiments: the curve (state holds its last point).
   std::vector<CurvePoint> curve;
   Model model;

@@ -130,6 +130,30 @@ TEST(Cli, SelfWeightReportsTheSagAndTheVolumeChange) {
   EXPECT_NE(unloaded.out.find("--gravity"), std::string::npos) << unloaded.out;
 }
 
+// Compression between bonded plates: the plate's force, the bulge and the volume in the JSON (the
+// CalculiX comparison is tests/validation/test_bonded_compression_fem.cpp).
+TEST(Cli, BondedCompressionReportsThePlateForceTheBulgeAndTheVolume) {
+  const nlohmann::json j = run_json(
+      "measure bonded-compression --young 15300 --poisson 0.49 --law neo-hookean --model exact-bending "
+      "--cells 4,4,4 --cell-size 0.02 --strain -0.1 --points 2");
+  EXPECT_EQ(j["experiment"], "bonded-compression");
+  ASSERT_EQ(j["curve"].size(), 2u);
+  EXPECT_DOUBLE_EQ(j["curve"][1]["strain"].get<double>(), -0.1);
+  const double force = j["measured"]["platen_force"].get<double>();
+  // pressed, the plate pushes down: more than E A strain (the bonded faces cannot spread)
+  EXPECT_LT(force, -15300 * 0.08 * 0.08 * 0.1);
+  EXPECT_NEAR(j["measured"]["stress"].get<double>(), force / (0.08 * 0.08), 1e-9 * std::abs(force));
+  EXPECT_GT(j["measured"]["bulge"].get<double>(), 0.0);                    // the sides bulge out
+  EXPECT_LT(std::abs(j["measured"]["volume_change"].get<double>()), 0.01);  // nearly incompressible
+  EXPECT_GT(j["measured"]["least_cell_volume_ratio"].get<double>(), 0.9);
+  const ToolRun table = run_tool("measure bonded-compression --cells 2,2,2 --points 1");
+  EXPECT_EQ(table.exit_code, 0) << table.out;
+  EXPECT_NE(table.out.find("platen force"), std::string::npos) << table.out;
+  const ToolRun unloaded = run_tool("measure bonded-compression --cells 2,2,2 --strain 0");
+  EXPECT_NE(unloaded.exit_code, 0);
+  EXPECT_NE(unloaded.out.find("--strain"), std::string::npos) << unloaded.out;
+}
+
 // Width and height from a PNG's header (the IHDR chunk follows the 8-byte signature).
 std::pair<int, int> png_size(const std::string& path) {
   std::FILE* file = std::fopen(path.c_str(), "rb");

@@ -90,6 +90,10 @@ std::string check_spec(const BeamReferenceSpec& spec) {
   if (spec.clamped_axis < 0 || spec.clamped_axis > 2) {
     return "clamped_axis must be 0, 1 or 2, got " + std::to_string(spec.clamped_axis);
   }
+  if (!std::isfinite(spec.platen_travel) || spec.platen_travel < 0 ||
+      spec.platen_travel >= spec.size[std::clamp(spec.clamped_axis, 0, 2)]) {
+    return "platen_travel must be in [0, the size along clamped_axis) m, got " + format_double(spec.platen_travel);
+  }
   if (spec.work_dir.empty()) {
     return "work_dir is empty; give a folder for the CalculiX deck and output";
   }
@@ -180,6 +184,30 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
     deck += std::to_string(row_end_node) + "," + b + "," + b + "\n";
   }
 
+  if (spec.platen_travel > 0) {
+    // the opposite face, corner and mid-edge nodes, bonded to the platen
+    const int axis = spec.clamped_axis;
+    deck += "*NSET, NSET=NPLATEN\n";
+    on_line = 0;
+    for (int c = 0; c < grid.fine.z(); ++c) {
+      for (int b = 0; b < grid.fine.y(); ++b) {
+        for (int a = 0; a < grid.fine.x(); ++a) {
+          if (Eigen::Vector3i(a, b, c)[axis] != grid.fine[axis] - 1) continue;
+          const int node = grid.id[grid.index(a, b, c)];
+          if (node == 0) continue;
+          deck += std::to_string(node);
+          deck += ++on_line == 16 ? ",\n" : ",";
+          if (on_line == 16) on_line = 0;
+        }
+      }
+    }
+    if (on_line != 0) deck += '\n';
+    const std::string n = std::to_string(axis + 1);
+    const std::string a = std::to_string((axis + 1) % 3 + 1), b = std::to_string((axis + 2) % 3 + 1);
+    deck += "*BOUNDARY\nNPLATEN," + a + "," + a + "\nNPLATEN," + b + "," + b + "\n";
+    deck += "NPLATEN," + n + "," + n + "," + deck_number(-spec.platen_travel) + "\n";
+  }
+
   deck += "*MATERIAL, NAME=BEAM_MATERIAL\n";
   const double e = spec.young_modulus;
   const double nu = spec.poisson_ratio;
@@ -216,9 +244,10 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   } else {
     deck += "*STEP\n*STATIC, SOLVER=" + std::string(solver) + "\n";
   }
-  deck += "*DLOAD\nEALL,GRAV," + deck_number(spec.gravity) + ",0.,0.,-1.\n";
+  if (spec.gravity != 0) deck += "*DLOAD\nEALL,GRAV," + deck_number(spec.gravity) + ",0.,0.,-1.\n";
   // .dat output: one fixed-format block per converged increment
   deck += "*NODE PRINT, NSET=NCORNER\nU\n";
+  if (spec.platen_travel > 0) deck += "*NODE PRINT, NSET=NPLATEN, TOTALS=ONLY\nRF\n";
   // beam.frd: every node and the solid's surface, for `cubespring measure cantilever --reference`
   deck += "*NODE FILE\nU\n";
   deck += "*END STEP\n";
@@ -238,12 +267,14 @@ BeamResult compute(const BeamReferenceSpec& spec) {
   }
 
   const NodeGrid grid(spec.elements);
-  CcxResult run = run_ccx(spec.work_dir, kJobName, build_deck(spec, grid), grid.corner_count);
+  CcxResult run = run_ccx(spec.work_dir, kJobName, build_deck(spec, grid), grid.corner_count,
+                          spec.platen_travel > 0 ? "NPLATEN" : "");
   if (!run.error.empty()) return fail("calculix beam: " + run.error);
   BeamReference reference;
   reference.elements = spec.elements;
   reference.size = spec.size;
   reference.corner_displacement = std::move(run.corner_displacement);
+  if (spec.platen_travel > 0) reference.platen_force = run.total_force;
   BeamResult result;
   result.reference = std::move(reference);
   return result;

@@ -40,6 +40,10 @@ struct BeamReferenceSpec {
   /// row along the first other axis on the second, against sliding and turning (they carry no
   /// force). Needs a node at the face's centre (even element counts across it).
   bool sliding = false;
+  /// When > 0 [m]: the face opposite the clamped one (coordinate = size along clamped_axis) is
+  /// bonded to a rigid platen that moves this far towards the clamped face (every node there held
+  /// in the face's plane and moved along clamped_axis); BeamReference::platen_force has its force.
+  double platen_travel = 0.0;
   /// false: linear elastic, linear static step.
   /// true: NLGEOM with a compressible neo-Hookean material (C10 = G/2,
   /// D1 = 2/K), load ramped with automatic increments.
@@ -62,6 +66,8 @@ struct BeamReference {
   /// (i*Lx/nx, j*Ly/ny, k*Lz/nz), indexed i + (nx+1)*(j + (ny+1)*k);
   /// ((nx+1)*(ny+1)*(nz+1) entries).
   std::vector<Eigen::Vector3d> corner_displacement;
+  /// With platen_travel: the force the platen exerts on the block (its nodes' reactions) [N].
+  std::optional<Eigen::Vector3d> platen_force;
 
   /// Displacement (unit: metre) at a rest point (unit: metre) that coincides
   /// with a corner node (within 1e-9 of the largest beam side); std::nullopt

@@ -3,6 +3,8 @@
 
 #include "calculix_common.h"
 
+#include <cctype>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -157,13 +159,61 @@ std::string parse_dat(const fs::path& dat_path, int corner_count, std::vector<Ei
   return {};
 }
 
+// The last "total force (fx,fy,fz) for set <set> and time T" block: its line of three numbers,
+// at the end of the step (T = 1).
+std::string parse_total_force(const fs::path& dat_path, const std::string& set, Eigen::Vector3d& force) {
+  std::ifstream dat(dat_path);
+  if (!dat) return "cannot open ccx output " + dat_path.string();
+  std::string upper_set = set;
+  for (char& c : upper_set) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  std::string line;
+  int line_number = 0;
+  bool in_block = false, found = false;
+  double time = NAN;
+  while (std::getline(dat, line)) {
+    ++line_number;
+    std::string upper = line;
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    if (upper.find("TOTAL FORCE (FX,FY,FZ) FOR SET " + upper_set + " ") != std::string::npos) {
+      const std::size_t at = upper.find("TIME");
+      std::istringstream header(at == std::string::npos ? std::string() : line.substr(at + 4));
+      std::string token;
+      header >> token;
+      if (!parse_fortran_double(token, time)) {
+        return dat_path.string() + ":" + std::to_string(line_number) + ": unreadable time in '" + line + "'";
+      }
+      in_block = true;
+      continue;
+    }
+    if (!in_block) continue;
+    std::istringstream fields(line);
+    std::string tokens[3];
+    int count = 0;
+    while (count < 3 && fields >> tokens[count]) ++count;
+    if (count == 0) continue;
+    in_block = false;
+    if (count != 3 || !parse_fortran_double(tokens[0], force.x()) || !parse_fortran_double(tokens[1], force.y()) ||
+        !parse_fortran_double(tokens[2], force.z())) {
+      return dat_path.string() + ":" + std::to_string(line_number) + ": unreadable total force '" + line + "'";
+    }
+    found = true;
+  }
+  if (!found) return dat_path.string() + ": no total force block for set " + set;
+  if (!(std::abs(time - 1.0) < 1e-6)) {
+    return dat_path.string() + ": the last total force of set " + set + " is at time " + format_double_impl(time) +
+           ", not at the end of the step (1)";
+  }
+  return {};
+}
+
 CcxResult fail(std::string message) {
   CcxResult result;
   result.error = std::move(message);
   return result;
 }
 
-CcxResult run(const std::string& work_dir_text, const std::string& job, const std::string& deck, int corner_count) {
+CcxResult run(const std::string& work_dir_text, const std::string& job, const std::string& deck, int corner_count,
+              const std::string& total_force_set) {
   // work folder, cleared of the outputs of an earlier run so a failed run can never be mistaken
   // for a good one; absolute, so the shell's cd can never take it for an option
   std::error_code ec;
@@ -217,6 +267,11 @@ CcxResult run(const std::string& work_dir_text, const std::string& job, const st
     return fail("last displacement block in " + dat_path.string() + " is at time " + format_double_impl(time) +
                 ", not at the end of the step (1); last lines of " + log_path.string() + ":" + read_log_tail(log_path));
   }
+  if (!total_force_set.empty()) {
+    if (std::string problem = parse_total_force(dat_path, total_force_set, result.total_force); !problem.empty()) {
+      return fail(problem);
+    }
+  }
   return result;
 }
 
@@ -225,9 +280,10 @@ CcxResult run(const std::string& work_dir_text, const std::string& job, const st
 std::string deck_number(double value) { return deck_number_impl(value); }
 std::string format_double(double value) { return format_double_impl(value); }
 
-CcxResult run_ccx(const std::string& work_dir, const std::string& job, const std::string& deck, int corner_count) {
+CcxResult run_ccx(const std::string& work_dir, const std::string& job, const std::string& deck, int corner_count,
+                  const std::string& total_force_set) {
   try {
-    return run(work_dir, job, deck, corner_count);
+    return run(work_dir, job, deck, corner_count, total_force_set);
   } catch (const std::exception& error) {
     return fail(std::string("unexpected failure: ") + error.what());
   } catch (...) {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -34,14 +35,18 @@ std::string format_double(double value);
 /// Displacements [m] of nodes 1..corner_count (node id - 1), or an error naming what failed.
 struct CcxResult {
   std::vector<Eigen::Vector3d> corner_displacement;
+  /// The summed reaction force [N] of the set run_ccx was asked for, at the end of the step.
+  Eigen::Vector3d total_force = Eigen::Vector3d::Constant(NAN);
   std::string error;
 };
 
 /// Writes <work_dir>/<job>.inp, runs `ccx -i <job>` there (output to <work_dir>/ccx.log), and reads
 /// the last block of displacements of the node set NCORNER from <job>.dat, which must be at the end
 /// of the step (time 1). The deck must print that set with *NODE PRINT, NSET=NCORNER / U, and its
-/// nodes must be numbered 1..corner_count. Never throws.
-CcxResult run_ccx(const std::string& work_dir, const std::string& job, const std::string& deck, int corner_count);
+/// nodes must be numbered 1..corner_count. With `total_force_set`, also the last summed reaction
+/// force of that set (*NODE PRINT, NSET=<set>, TOTALS=ONLY / RF). Never throws.
+CcxResult run_ccx(const std::string& work_dir, const std::string& job, const std::string& deck, int corner_count,
+                  const std::string& total_force_set = "");
 
 /// True when an executable `ccx` is on PATH.
 bool calculix_available();

@@ -13,14 +13,11 @@
 #include "cubespring/strain.h"
 
 namespace cubespring::validation {
-namespace {
 
-// The FE's volume: its corner nodes as the corners of trilinear cells (body_volume), which leaves
-// out the quadratic elements' curved edges; the meshes' convergence shows what that costs.
 double fe_volume_change(const BeamReference& reference) {
-  const int n = reference.elements.x();
-  const double h = kCubeSide / n;
-  Result<Model> grid = build_model(box_lattice({n, n, n}, Eigen::Vector3d::Constant(h), Material{}));
+  const Eigen::Vector3i n = reference.elements;
+  const Eigen::Vector3d h = reference.size.cwiseQuotient(n.cast<double>());
+  Result<Model> grid = build_model(box_lattice(n, h, Material{}));
   if (!grid) throw std::runtime_error(grid.message());
   const Model& model = grid.value();
   Eigen::Matrix3Xd deformed = model.rest_positions;
@@ -30,8 +27,6 @@ double fe_volume_change(const BeamReference& reference) {
   }
   return body_volume(model, deformed) / body_volume(model, model.rest_positions) - 1.0;
 }
-
-}  // namespace
 
 std::vector<SelfWeightRow> read_self_weight_rows(const std::string& path) {
   std::ifstream in(path);

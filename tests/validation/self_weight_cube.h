@@ -14,6 +14,13 @@
 
 namespace cubespring::validation {
 
+struct BeamReference;
+
+/// The FE's volume change (deformed / rest - 1): its corner nodes as the corners of trilinear
+/// cells (body_volume), which leaves out the quadratic elements' curved edges; the meshes'
+/// convergence shows what that costs.
+double fe_volume_change(const BeamReference& reference);
+
 inline constexpr double kCubeSide = 0.12;      // [m]
 inline constexpr double kCubePoisson = 0.45;
 inline constexpr double kCubeDensity = 1060;   // [kg/m^3]
