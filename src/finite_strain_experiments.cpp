@@ -177,7 +177,7 @@ Result<std::vector<CurvePoint>> finite_strain_curve(Experiment experiment, const
   return curve;
 }
 
-double neo_hookean_uniaxial_stress(const Material& material, double stretch) {
+double neo_hookean_uniaxial_lateral_stretch(const Material& material, double stretch) {
   // the lateral stretch whose Cauchy stress is zero: the stress rises with it (the volume term
   // dominates both ends), so bisect, on a log scale, between J = 0.05 and a hundredfold volume
   double low = std::sqrt(0.05 / stretch), high = std::sqrt(100.0 / stretch);
@@ -185,7 +185,11 @@ double neo_hookean_uniaxial_stress(const Material& material, double stretch) {
     const double middle = std::sqrt(low * high);
     (principal_cauchy_stress(material, middle, middle, stretch) > 0.0 ? high : low) = middle;
   }
-  const double lateral = std::sqrt(low * high);
+  return std::sqrt(low * high);
+}
+
+double neo_hookean_uniaxial_stress(const Material& material, double stretch) {
+  const double lateral = neo_hookean_uniaxial_lateral_stretch(material, stretch);
   const double j = stretch * lateral * lateral;
   return j * principal_cauchy_stress(material, stretch, lateral, lateral) / stretch;
 }

@@ -137,6 +137,8 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
 /// above 0.05) in closed form: nominal stresses [Pa] of a material's E and nu.
 /// Uniaxial stress, the lateral faces free (their stretch solved for zero lateral stress):
 double neo_hookean_uniaxial_stress(const Material& material, double stretch);
+/// and that lateral stretch [-].
+double neo_hookean_uniaxial_lateral_stretch(const Material& material, double stretch);
 /// Simple shear F = I + gamma e_x e_z^T: P_xz = G gamma (J = 1, any gamma).
 double neo_hookean_simple_shear_stress(const Material& material, double gamma);
 /// Uniform dilatation to the volume ratio J: P = J^(2/3) dU/dJ.
