@@ -45,6 +45,12 @@ double face_strain(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::V
           face_mean(u, face_weights(model, axis, 0, cells[axis]), axis)) / length;
 }
 
+// Below this size a strain's displacements are lost in the positions' round-off, and the moduli
+// measured from them come out infinite or NaN.
+constexpr double kSmallestStrain = 1e-9;
+// 1e5 g: far beyond any load a body here carries, far from overflowing its weight.
+constexpr double kLargestGravity = 1e6;  // [m/s^2]
+
 Status check_settings(Experiment experiment, const ExperimentSettings& s) {
   if (s.cells.minCoeff() < 1) {
     std::ostringstream message;
@@ -73,14 +79,21 @@ Status check_settings(Experiment experiment, const ExperimentSettings& s) {
     if (s.curve_points < 1 || s.curve_points > 1000) {
       return Status::error("curve_points = " + std::to_string(s.curve_points) + ": must be 1 to 1000");
     }
-  } else if (!std::isfinite(s.strain) || s.strain <= 0.0 || s.strain > 0.5) {
+  } else if (!std::isfinite(s.strain) || s.strain < kSmallestStrain || s.strain > 0.5) {
     std::ostringstream message;
-    message << "strain = " << s.strain << ": must be > 0 and <= 0.5";
+    message << "strain = " << s.strain << ": must be " << kSmallestStrain << " to 0.5";
     return Status::error(message.str());
   }
-  if (!std::isfinite(s.gravity) || s.gravity < 0.0) {
+  if (std::abs(s.strain) < kSmallestStrain) {  // the curves' (0 is refused above)
     std::ostringstream message;
-    message << "gravity = " << s.gravity << " m/s^2: must be a finite number >= 0";
+    message << "strain = " << s.strain << ": must be at least " << kSmallestStrain
+            << " in size (smaller displacements are lost in the positions' round-off)";
+    return Status::error(message.str());
+  }
+  if (!std::isfinite(s.gravity) || s.gravity < 0.0 || s.gravity > kLargestGravity) {
+    std::ostringstream message;
+    message << "gravity = " << s.gravity << " m/s^2: must be 0 to " << kLargestGravity
+            << " m/s^2 (beyond, the weight leaves the range of double)";
     return Status::error(message.str());
   }
   return {};

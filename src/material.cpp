@@ -21,6 +21,11 @@ Status validate(const Material& material) {
     return Status::error("young_modulus = " + format(material.young_modulus) +
                          " Pa: Young's modulus must be a finite number > 0");
   }
+  if (material.young_modulus < kMinYoungModulus || material.young_modulus > kMaxYoungModulus) {
+    return Status::error("young_modulus = " + format(material.young_modulus) + " Pa: must be " +
+                         format(kMinYoungModulus) + " to " + format(kMaxYoungModulus) +
+                         " Pa (beyond, forces and time steps leave the range of double)");
+  }
   if (!std::isfinite(material.poisson_ratio) || material.poisson_ratio <= kMinPoissonRatio ||
       material.poisson_ratio >= kMaxPoissonRatio) {
     return Status::error("poisson_ratio = " + format(material.poisson_ratio) +
@@ -39,6 +44,11 @@ Status validate(const Material& material) {
   if (!std::isfinite(material.density) || material.density <= 0.0) {
     return Status::error("density = " + format(material.density) +
                          " kg/m^3: density must be a finite number > 0");
+  }
+  if (material.density < kMinDensity || material.density > kMaxDensity) {
+    return Status::error("density = " + format(material.density) + " kg/m^3: must be " + format(kMinDensity) +
+                         " to " + format(kMaxDensity) + " kg/m^3 (beyond, masses, weights and time steps "
+                         "leave the range of double)");
   }
   if (!std::isfinite(material.mass_damping) || material.mass_damping < 0.0) {
     return Status::error("mass_damping = " + format(material.mass_damping) +

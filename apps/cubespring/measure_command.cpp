@@ -332,6 +332,14 @@ int run_measure(const MeasureOptions& o) {
     std::cerr << "error: " << with_flag(result.message()) << "\n";
     return 2;
   }
+  nlohmann::json report = report_json(result.value());
+  if (const std::optional<NonFinite> bad = first_non_finite(report)) {
+    std::cerr << "error: the result " << bad->path << " = " << bad->value
+              << " is not finite: the inputs (E = " << o.young << " Pa, nu = " << o.poisson << ", rho = " << o.density
+              << " kg/m^3, strain " << settings.strain << ", gravity " << o.gravity
+              << " m/s^2) are beyond what this experiment resolves\n";
+    return 1;
+  }
   if (!o.png.empty() && !write_picture(o, result.value(), reference ? &*reference : nullptr)) return 1;
   std::optional<FemComparison> comparison;
   if (reference) comparison = compare_cantilever_with_fem(result.value(), *reference);
@@ -340,7 +348,6 @@ int run_measure(const MeasureOptions& o) {
               << "beam, in metres?\n";
   }
   if (o.json) {
-    nlohmann::json report = report_json(result.value());
     if (comparison) report["reference"] = reference_json(o.reference, *comparison);
     if (!o.png.empty()) report["png"] = o.png;
     std::cout << json_text(report) << "\n";
@@ -365,9 +372,12 @@ Command add_measure_command(CLI::App& app) {
       ->required()
       ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever", "self-weight", "uniaxial",
                              "simple-shear", "hydrostatic", "bonded-compression"}));
-  cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->capture_default_str();
-  cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->capture_default_str();
-  cmd->add_option("--density", options->density, "density [kg/m^3]")->capture_default_str();
+  cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->check(finite_number())
+      ->capture_default_str();
+  cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->check(finite_number())
+      ->capture_default_str();
+  cmd->add_option("--density", options->density, "density [kg/m^3]")->check(finite_number())
+      ->capture_default_str();
   cmd->add_option("--cells", options->cells,
                   "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12; the curves "
                   "4,4,4; bonded-compression 8,8,8)");
@@ -376,11 +386,13 @@ Command add_measure_command(CLI::App& app) {
                                         "load as the continuum strain it causes (small deformation); the curves' "
                                         "end: uniaxial stretch - 1 (default -0.4), simple-shear gamma (0.5), "
                                         "hydrostatic J - 1 (-0.1), bonded-compression stretch - 1 along z (-0.1825)")
+                            ->check(finite_number())
                             ->capture_default_str();
   cmd->add_option("--points", options->points, "the curves (uniaxial .. bonded-compression): points on the curve")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
       ->check(CLI::IsMember({"displacement", "force"}))
@@ -399,9 +411,11 @@ Command add_measure_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--edge-fraction", options->exact_bending.edge_fraction,
                   "exact-bending: edge stiffness as a fraction beta of E h")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_option("--twist-factor", options->exact_bending.twist_factor,
                   "exact-bending: twist stiffness as a fraction zeta of G")
+      ->check(finite_number())
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print one JSON object on stdout");
   cmd->add_option("--png", options->png, "cantilever: draw the deformed lattice coloured by displacement into FILE");

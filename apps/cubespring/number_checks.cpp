@@ -30,6 +30,10 @@ CLI::Validator finite_positive_number() {
                       "NUMBER > 0", "FINITE_POSITIVE");
 }
 
+CLI::Validator finite_number() {
+  return number_check([](double value) { return std::isfinite(value); }, "a finite number", "NUMBER", "FINITE");
+}
+
 CLI::Validator fraction_number() {
   return number_check([](double value) { return value > 0.0 && value <= 1.0; }, "in (0, 1]", "NUMBER in (0, 1]",
                       "FRACTION");

@@ -9,6 +9,8 @@ namespace cubespring::app {
 
 /// A finite number > 0. (CLI11's PositiveNumber lets "nan" and "inf" through: neither is <= 0.)
 CLI::Validator finite_positive_number();
+/// A finite number (not empty: CLI11 reads "" as 0).
+CLI::Validator finite_number();
 /// A number in (0, 1].
 CLI::Validator fraction_number();
 

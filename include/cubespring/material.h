@@ -24,6 +24,14 @@ struct Material {
 inline constexpr double kMinPoissonRatio = -0.25;
 inline constexpr double kMaxPoissonRatio = 0.5;
 
+/// The ranges validate() takes for E and rho: wide enough for any tissue or engineering material
+/// (tissue is 1e2-1e5 Pa, steel 2e11 Pa; aerogel 1 kg/m^3, osmium 2.3e4 kg/m^3), narrow enough that
+/// forces, masses and time steps stay finite (at E = 1e308 Pa a strain of 1e-4 already overflows).
+inline constexpr double kMinYoungModulus = 1e-3;  ///< [Pa]
+inline constexpr double kMaxYoungModulus = 1e13;  ///< [Pa]
+inline constexpr double kMinDensity = 1e-3;       ///< [kg/m^3]
+inline constexpr double kMaxDensity = 1e6;        ///< [kg/m^3]
+
 /// Checks every field; the message names the field, its value and the allowed range.
 Status validate(const Material& material);
 

@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -18,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/tool_run.h"
+#include "json_output.h"
 
 namespace {
 
@@ -152,6 +155,48 @@ TEST(Cli, BondedCompressionReportsThePlateForceTheBulgeAndTheVolume) {
   const ToolRun unloaded = run_tool("measure bonded-compression --cells 2,2,2 --strain 0");
   EXPECT_NE(unloaded.exit_code, 0);
   EXPECT_NE(unloaded.out.find("--strain"), std::string::npos) << unloaded.out;
+}
+
+// Numbers whose results would not be finite are refused by their flag, with the range taken,
+// never printed as inf or nan with exit 0 (issue 30's cases); an empty number is not 0.
+TEST(Cli, MeasureRefusesNumbersWhoseResultsWouldNotBeFinite) {
+  struct Case {
+    const char* arguments;
+    const char* flag;
+    const char* says;
+  };
+  for (const Case& c : {Case{"measure elongation --young 1e308", "--young", "1e+13"},
+                        Case{"measure elongation --young 1e-300", "--young", "0.001"},
+                        Case{"measure elongation --strain 1e-300", "--strain", "1e-09"},
+                        Case{"measure uniaxial --strain -1e-300 --law neo-hookean", "--strain", "1e-09"},
+                        Case{"measure cantilever --density 1e308", "--density", "1e+06"},
+                        Case{"measure cantilever --gravity 1e308", "--gravity", "1e+06"},
+                        Case{"measure elongation --poisson ''", "--poisson", "not a number"},
+                        Case{"measure elongation --young ''", "--young", "not a number"}}) {
+    const ToolRun run = run_tool(c.arguments);
+    EXPECT_NE(run.exit_code, 0) << c.arguments << ": " << run.out;
+    EXPECT_NE(run.out.find(c.flag), std::string::npos) << c.arguments << ": " << run.out;
+    EXPECT_NE(run.out.find(c.says), std::string::npos) << c.arguments << ": " << run.out;
+    EXPECT_EQ(run.out.find("nan"), std::string::npos) << c.arguments << ": " << run.out;
+    EXPECT_LT(run.out.size(), 300u) << c.arguments << ": a line or two";
+  }
+}
+
+// The reports' last guard: the first number that is not finite, by its key path.
+TEST(Cli, ReportsFindTheirFirstNumberThatIsNotFinite) {
+  nlohmann::json report = {{"measured", {{"a", 1.0}, {"b", 2}}}, {"curve", {{{"stress", 1.0}}, {{"stress", 3.0}}}}};
+  EXPECT_FALSE(cubespring::app::first_non_finite(report).has_value());
+  report["curve"][1]["stress"] = std::numeric_limits<double>::quiet_NaN();
+  std::optional<cubespring::app::NonFinite> found = cubespring::app::first_non_finite(report);
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->path, "curve[1].stress");
+  report["measured"]["a"] = -std::numeric_limits<double>::infinity();
+  found = cubespring::app::first_non_finite(report);
+  ASSERT_TRUE(found.has_value());
+  EXPECT_EQ(found->path, "curve[1].stress");  // objects' keys in order: "curve" before "measured"
+  report["curve"][1]["stress"] = 0.0;
+  EXPECT_EQ(cubespring::app::first_non_finite(report)->path, "measured.a");
+  EXPECT_EQ(cubespring::app::first_non_finite(report)->value, -std::numeric_limits<double>::infinity());
 }
 
 // Width and height from a PNG's header (the IHDR chunk follows the 8-byte signature).
