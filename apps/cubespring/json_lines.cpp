@@ -133,6 +133,13 @@ class LineRecorder {
     return true;
   }
   bool open(json&& container) {
+    // deeper documents are no scene; and each level's pointer repeats its parent's, so memory
+    // grows with the square of the depth (100,000 levels took 5.4 GB)
+    if (stack_.size() >= kMaxJsonDepth) {
+      error_line_ = line();
+      error_ = "objects and arrays nested more than " + std::to_string(kMaxJsonDepth) + " levels deep";
+      return false;
+    }
     auto [slot, pointer] = place(std::move(container), line());
     stack_.push_back({slot, pointer, ""});
     return true;

@@ -3,6 +3,7 @@
 // JSON read with the line of every key, so that errors in a scene file can point at the line.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
 
@@ -13,6 +14,9 @@
 namespace cubespring::app {
 
 /// A parsed JSON document and where its values are in the text.
+/// How deep objects and arrays may nest in a document parse_json_with_lines() takes.
+inline constexpr std::size_t kMaxJsonDepth = 64;
+
 struct JsonWithLines {
   nlohmann::json value;
   /// 1-based line of each value by its JSON pointer ("/organ/scale", "/tools/0/keyframes/1"):

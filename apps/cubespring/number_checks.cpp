@@ -34,6 +34,17 @@ CLI::Validator finite_number() {
   return number_check([](double value) { return std::isfinite(value); }, "a finite number", "NUMBER", "FINITE");
 }
 
+CLI::Validator byte_count() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
+          return "'" + text + "' is not a whole number of bytes >= 0";
+        }
+        return {};
+      },
+      "BYTES", "BYTE_COUNT");
+}
+
 CLI::Validator fraction_number() {
   return number_check([](double value) { return value > 0.0 && value <= 1.0; }, "in (0, 1]", "NUMBER in (0, 1]",
                       "FRACTION");

@@ -11,6 +11,8 @@ namespace cubespring::app {
 CLI::Validator finite_positive_number();
 /// A finite number (not empty: CLI11 reads "" as 0).
 CLI::Validator finite_number();
+/// A whole number >= 0 written as digits (CLI11 reads "-1" into an unsigned flag as 2^64 - 1).
+CLI::Validator byte_count();
 /// A number in (0, 1].
 CLI::Validator fraction_number();
 

@@ -62,8 +62,8 @@ Command add_run_command(CLI::App& app) {
   cmd->add_option("--frames", options->frames, "render N frames evenly over the scene's duration")
       ->check(CLI::Range(1, 1000000));  // as the scene's "frames"
   cmd->add_option("--out", options->out, "output folder (default: the scene's, cubespring-demo-output)");
-  cmd->add_option("--width", options->width, "frame width [pixels]")->check(CLI::PositiveNumber);
-  cmd->add_option("--height", options->height, "frame height [pixels]")->check(CLI::PositiveNumber);
+  cmd->add_option("--width", options->width, "frame width [pixels]")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", options->height, "frame height [pixels]")->check(CLI::Range(1, 16384));
   return [options] { return run(*options); };
 }
 

@@ -386,6 +386,13 @@ Result<Scene> parse_scene(const std::string& text, const SceneContext& context) 
 }
 
 Result<Scene> load_scene(const std::string& path, const std::string& data_dir) {
+  std::error_code error;
+  if (fs::is_directory(path, error)) return Status::error(path + " is a folder, not a scene file (JSON)");
+  const std::uintmax_t bytes = fs::file_size(path, error);
+  if (!error && bytes > kMaxSceneBytes) {
+    return Status::error(path + " is " + std::to_string(bytes / 1000000) + " MB: a scene file is at most " +
+                         std::to_string(kMaxSceneBytes / 1000000) + " MB (its meshes are files of their own)");
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file) return Status::error("cannot open the scene file " + path);
   std::ostringstream text;

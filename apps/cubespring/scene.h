@@ -4,6 +4,7 @@
 // line and the camera. Every field has the default that docs/scene-format.md gives for its key.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -125,5 +126,7 @@ Result<Scene> parse_scene(const std::string& text, const SceneContext& context);
 
 /// Reads and parses a scene file; relative mesh paths are relative to its folder.
 Result<Scene> load_scene(const std::string& path, const std::string& data_dir);
+/// The largest scene file load_scene() reads [bytes].
+inline constexpr std::uintmax_t kMaxSceneBytes = 16000000;
 
 }  // namespace cubespring::app

@@ -172,7 +172,7 @@ Command add_voxelize_command(CLI::App& app) {
   CLI::Option* size = cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]");
   CLI::Option* across = cmd->add_option("--cells-across", options->cells_across,
                                         "cubic cells, this many along the mesh's longest side")
-                            ->check(CLI::PositiveNumber)
+                            ->check(CLI::Range(1, 100000))
                             ->capture_default_str();
   size->excludes(across);
   cmd->add_option("--scale", options->scale, "metres per file unit (0.001 for millimetres)")
@@ -190,7 +190,8 @@ Command add_voxelize_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--drop-islands", options->drop_islands, "keep only the largest face-connected piece of cells");
   cmd->add_option("--max-memory", options->max_memory, "refuse grids whose estimate exceeds BYTES (default: half "
-                                                       "of this machine's memory)");
+                                                       "of this machine's memory)")
+      ->check(byte_count());
   cmd->add_flag("--json", options->json, "print one JSON object on stdout");
   return [options] { return run_voxelize(*options); };
 }

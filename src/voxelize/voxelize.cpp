@@ -216,6 +216,12 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   triangle_bounds(mesh, low, high);
   const double longest = (high - low).maxCoeff();
   const double total_part_volume = std::accumulate(repaired.solid_volume.begin(), repaired.solid_volume.end(), 0.0);
+  if (!std::isfinite(longest * longest * longest) || !std::isfinite(total_part_volume)) {
+    std::ostringstream out;
+    out << "the mesh spans " << describe_vector(high - low)
+        << " m: its volume is out of the range of double (is its scale, metres per file unit, right?)";
+    return Status::error(out.str());
+  }
   if (!(longest > 0.0) || total_part_volume <= 1e-9 * longest * longest * longest) {
     std::ostringstream out;
     out << "the mesh encloses no volume (" << total_part_volume << " m^3 in a bounding box of "

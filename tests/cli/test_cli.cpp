@@ -182,6 +182,24 @@ TEST(Cli, MeasureRefusesNumbersWhoseResultsWouldNotBeFinite) {
   }
 }
 
+// voxelize's numbers: ranges stated plainly (not DBL_MAX in 309 digits), a scale that overflows
+// the mesh's volume named (it said "needs about -nan MB"), a negative byte count refused (it
+// wrapped to 2^64 - 1).
+TEST(Cli, VoxelizeRefusesNumbersOutOfRangeByName) {
+  const std::string mesh = std::string(CUBESPRING_DATA_DIR) + "/liver.obj";
+  ToolRun run = run_tool("voxelize " + mesh + " --cells-across 0");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("--cells-across: Value 0 not in range 1 to 100000"), std::string::npos) << run.out;
+  EXPECT_LT(run.out.size(), 200u) << run.out;
+  run = run_tool("voxelize " + mesh + " --scale 1e300");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("out of the range of double"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("nan"), std::string::npos) << run.out;
+  run = run_tool("voxelize " + mesh + " --max-memory -1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("--max-memory: '-1' is not a whole number of bytes"), std::string::npos) << run.out;
+}
+
 // The reports' last guard: the first number that is not finite, by its key path.
 TEST(Cli, ReportsFindTheirFirstNumberThatIsNotFinite) {
   nlohmann::json report = {{"measured", {{"a", 1.0}, {"b", 2}}}, {"curve", {{{"stress", 1.0}}, {{"stress", 3.0}}}}};

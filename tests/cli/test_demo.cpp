@@ -608,6 +608,36 @@ TEST(DemoCli, MissingSceneFileIsAnError) {
   EXPECT_NE(run.out.find("error: cannot open the scene file /no/such/scene.json"), std::string::npos) << run.out;
 }
 
+// Scene files that are no scene: a folder, one nested too deep (100,000 levels took 5.4 GB), one too
+// large; each refused at once, by name.
+TEST(DemoCli, AFolderADeepNestAndAHugeFileAreRefusedAsScenes) {
+  const TempDir dir;
+  ToolRun run = run_tool("run " + dir.path().string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("is a folder, not a scene file"), std::string::npos) << run.out;
+
+  const fs::path deep = dir.path() / "deep.json";
+  {
+    std::ofstream file(deep);
+    for (int i = 0; i < 100000; ++i) file << "{\"a\":";
+    file << 1;
+    for (int i = 0; i < 100000; ++i) file << '}';
+  }
+  run = run_tool("run " + deep.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("deep.json:1: objects and arrays nested more than 64 levels deep"), std::string::npos)
+      << run.out.substr(0, 300);
+
+  const fs::path huge = dir.path() / "huge.json";
+  {
+    std::ofstream file(huge);
+    file << "{\"organ\": {}, \"padding\": \"" << std::string(17000000, 'a') << "\"}";
+  }
+  run = run_tool("run " + huge.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("a scene file is at most 16 MB"), std::string::npos) << run.out.substr(0, 300);
+}
+
 TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   const ToolRun run = run_tool("bench-render --frames 2 --seconds 0.02 --sizes '64x36;96x54' --json", false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
