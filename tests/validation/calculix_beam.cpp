@@ -100,6 +100,27 @@ std::string check_spec(const BeamReferenceSpec& spec) {
   return {};
 }
 
+// An *NSET of the nodes (corner and mid-edge) on the doubled grid's face at index `at` along
+// `axis`, 16 to a line (ccx reads no more).
+std::string face_node_set(const char* name, const NodeGrid& grid, int axis, int at) {
+  std::string set = std::string("*NSET, NSET=") + name + "\n";
+  int on_line = 0;
+  for (int c = 0; c < grid.fine.z(); ++c) {
+    for (int b = 0; b < grid.fine.y(); ++b) {
+      for (int a = 0; a < grid.fine.x(); ++a) {
+        if (Eigen::Vector3i(a, b, c)[axis] != at) continue;
+        const int node = grid.id[grid.index(a, b, c)];
+        if (node == 0) continue;
+        set += std::to_string(node);
+        set += ++on_line == 16 ? ",\n" : ",";
+        if (on_line == 16) on_line = 0;
+      }
+    }
+  }
+  if (on_line != 0) set += '\n';
+  return set;
+}
+
 std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   std::string deck;
   deck.reserve(static_cast<std::size_t>(grid.node_count) * 64 + static_cast<std::size_t>(spec.elements.prod()) * 140);
@@ -146,21 +167,7 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   deck += "*NSET, NSET=NCORNER, GENERATE\n1," + std::to_string(grid.corner_count) + ",1\n";
 
   // every node of the clamped face, corner and mid-edge alike
-  deck += "*NSET, NSET=NFIX\n";
-  int on_line = 0;
-  for (int c = 0; c < grid.fine.z(); ++c) {
-    for (int b = 0; b < grid.fine.y(); ++b) {
-      for (int a = 0; a < grid.fine.x(); ++a) {
-        if (Eigen::Vector3i(a, b, c)[spec.clamped_axis] != 0) continue;
-        const int node = grid.id[grid.index(a, b, c)];
-        if (node == 0) continue;
-        deck += std::to_string(node);
-        deck += ++on_line == 16 ? ",\n" : ",";
-        if (on_line == 16) on_line = 0;
-      }
-    }
-  }
-  if (on_line != 0) deck += '\n';
+  deck += face_node_set("NFIX", grid, spec.clamped_axis, 0);
   if (!spec.sliding) {
     deck += "*BOUNDARY\nNFIX,1,3\n";
   } else {
@@ -187,21 +194,7 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
   if (spec.platen_travel > 0) {
     // the opposite face, corner and mid-edge nodes, bonded to the platen
     const int axis = spec.clamped_axis;
-    deck += "*NSET, NSET=NPLATEN\n";
-    on_line = 0;
-    for (int c = 0; c < grid.fine.z(); ++c) {
-      for (int b = 0; b < grid.fine.y(); ++b) {
-        for (int a = 0; a < grid.fine.x(); ++a) {
-          if (Eigen::Vector3i(a, b, c)[axis] != grid.fine[axis] - 1) continue;
-          const int node = grid.id[grid.index(a, b, c)];
-          if (node == 0) continue;
-          deck += std::to_string(node);
-          deck += ++on_line == 16 ? ",\n" : ",";
-          if (on_line == 16) on_line = 0;
-        }
-      }
-    }
-    if (on_line != 0) deck += '\n';
+    deck += face_node_set("NPLATEN", grid, axis, grid.fine[axis] - 1);
     const std::string n = std::to_string(axis + 1);
     const std::string a = std::to_string((axis + 1) % 3 + 1), b = std::to_string((axis + 2) % 3 + 1);
     deck += "*BOUNDARY\nNPLATEN," + a + "," + a + "\nNPLATEN," + b + "," + b + "\n";
