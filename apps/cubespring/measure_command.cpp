@@ -401,9 +401,10 @@ Command add_measure_command(CLI::App& app) {
                   "self-weight: the base bonded, or on a frictionless floor (held along z only)")
       ->check(CLI::IsMember({"bonded", "floor"}))
       ->capture_default_str();
-  cmd->add_option("--model", options->model, "cell model: baudet2007 (the paper) or exact-bending")
-      ->check(CLI::IsMember({"baudet2007", "exact-bending"}))
-      ->capture_default_str();
+  CLI::Option* model = cmd->add_option("--model", options->model,
+                                       "cell model: baudet2007 (the paper; the default with the springs law) or "
+                                       "exact-bending (the default with the neo-Hookean law)")
+                           ->check(CLI::IsMember({"baudet2007", "exact-bending"}));
   cmd->add_option("--law", options->law,
                   "large-strain law of the cells: springs (the cell model as calibrated) or neo-hookean "
                   "(docs/model-neo-hookean.md)")
@@ -427,8 +428,15 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--magnify", options->magnify, "--png: draw displacements this many times their size (colours stay true)")
       ->check(finite_positive_number())
       ->capture_default_str();
-  return [options, strain] {
+  return [options, strain, model] {
     options->strain_given = strain->count() > 0;
+    // the paper's cells buckle under compression with the neo-Hookean law
+    // (docs/model-neo-hookean.md section 5): that law's default cells are exact-bending
+    if (model->count() == 0) options->model = options->law == "neo-hookean" ? "exact-bending" : "baudet2007";
+    if (model->count() > 0 && options->model == "baudet2007" && options->law == "neo-hookean") {
+      std::cerr << "warning: --model baudet2007 with --law neo-hookean: the paper's cells buckle under compression "
+                   "with this law (docs/model-neo-hookean.md section 5); exact-bending cells follow it\n";
+    }
     return run_measure(*options);
   };
 }
