@@ -167,29 +167,35 @@ inline CellFrame frame_from_diagonals(const Model& model, const ForceWorkspace& 
 // on each a-edge of a cell, and the crushed flag from the signed volume of the mean edge vectors,
 // which the diagonals give. With a corner target, also the twist forces (exact bending). Returns
 // the number of crushed cells.
-int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws,
-              const CornerTarget* twist = nullptr) {
+// The correction tension of cell c on each of its edges from the lengths (and, with_rate, the
+// length rates) pass 1 measured.
+void correction_tension(const Model& model, bool with_rate, int c, ForceWorkspace& ws) {
   const Eigen::Vector3d& size = model.cell_size;
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * size.array()).inverse();
   const Eigen::Array3d tension_per_stress = size.prod() * inverse_edge_sum;
-  const double crushed_volume = kCrushedVolumeFraction * size.prod();
+  const std::array<int, kEdgesPerCell>& edges = model.cell_edges[c];
+  Eigen::Array3d length_sum, rate_sum = Eigen::Array3d::Zero();
+  for (int axis = 0; axis < 3; ++axis) {
+    const int* e = edges.data() + axis * kEdgesPerAxis;
+    length_sum[axis] = (ws.spring_length[e[0]] + ws.spring_length[e[1]]) + (ws.spring_length[e[2]] + ws.spring_length[e[3]]);
+    if (with_rate) rate_sum[axis] = (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
+  }
+  Eigen::Vector3d strain = (length_sum * inverse_edge_sum - 1.0).matrix();
+  if (with_rate) {
+    const double beta = model.materials[model.cell_material[c]].stiffness_damping;
+    strain += (beta * (rate_sum * inverse_edge_sum)).matrix();
+  }
+  const Eigen::Vector3d stress = model.cell_correction[c] * strain;
+  ws.cell_tension.col(c) = (tension_per_stress * stress.array()).matrix();
+}
+
+int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws,
+              const CornerTarget* twist = nullptr) {
+  const double crushed_volume = kCrushedVolumeFraction * model.cell_size.prod();
   const DiagonalSigns signs(model);
   int crushed = 0;
   for (int c = begin; c < end; ++c) {
-    const std::array<int, kEdgesPerCell>& edges = model.cell_edges[c];
-    Eigen::Array3d length_sum, rate_sum = Eigen::Array3d::Zero();
-    for (int axis = 0; axis < 3; ++axis) {
-      const int* e = edges.data() + axis * kEdgesPerAxis;
-      length_sum[axis] = (ws.spring_length[e[0]] + ws.spring_length[e[1]]) + (ws.spring_length[e[2]] + ws.spring_length[e[3]]);
-      if (with_rate) rate_sum[axis] = (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
-    }
-    Eigen::Vector3d strain = (length_sum * inverse_edge_sum - 1.0).matrix();
-    if (with_rate) {
-      const double beta = model.materials[model.cell_material[c]].stiffness_damping;
-      strain += (beta * (rate_sum * inverse_edge_sum)).matrix();
-    }
-    const Eigen::Vector3d stress = model.cell_correction[c] * strain;
-    ws.cell_tension.col(c) = (tension_per_stress * stress.array()).matrix();
+    correction_tension(model, with_rate, c, ws);
 
     const bool is_crushed = frame_from_diagonals(model, ws, signs, c).volume() < crushed_volume;
     ws.cell_crushed[c] = is_crushed;
@@ -200,13 +206,14 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
   return crushed;
 }
 
-// Pass 2 of a neo-Hookean body (Model::cell_law) over cells [begin, end): no correction tension
+// Pass 2 of a neo-Hookean body (Model::cell_law) over cells [begin, end): the correction tension
+// of the edges' share of the term (neo_hookean_edge_correction; no damping: the law adds none)
 // and no crushed cells (the law's barrier replaces the inversion recovery); with a target, the
 // cell term's forces and the twist's go straight onto the corners. Returns 0 crushed cells.
 int neo_hookean_cell_pass(const Model& model, int begin, int end, ForceWorkspace& ws, const CornerTarget* target) {
   const DiagonalSigns signs(model);
   for (int c = begin; c < end; ++c) {
-    ws.cell_tension.col(c).setZero();
+    correction_tension(model, false, c, ws);
     ws.cell_crushed[c] = 0;
     if (target == nullptr) continue;
     MeanEdgeGradient gradient;

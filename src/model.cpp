@@ -200,7 +200,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
     const CellCalibration& calibration = calibrations[m];
     model.cell_grid_index[c] = desc.cells[source];
     model.cell_material[c] = m;
-    model.cell_correction[c] = springs_law ? calibration.correction : Eigen::Matrix3d::Zero();
+    model.cell_correction[c] = springs_law ? calibration.correction : neo_hookean_edge_correction(model.law_constants[m]);
     model.cell_inversion_stiffness[c] = springs_law ? kInversionStiffnessFactor * material.young_modulus : 0.0;
     model.cell_twist_stiffness[c] = calibration.twist_stiffness;
     model.has_twist |= calibration.twist_stiffness > 0.0;

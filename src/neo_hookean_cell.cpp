@@ -85,13 +85,8 @@ double neo_hookean_cell_energy(const NeoHookeanConstants& k, const CellFrame& fr
       (*gradient)[p] = per_j * cofactor[p] + (2.0 * k.rest_volume * k.c10 * scale.value * inverse_sq[p]) * m[p];
     }
   }
-  // minus what the springs store under the same homogeneous deformation
-  for (int p = 0; p < 3; ++p) {
-    const double length = m[p].norm();
-    const double stretch = length - k.cell_size[p];
-    energy -= 0.5 * k.edge_stiffness[p] * stretch * stretch;
-    if (gradient != nullptr && length > 0.0) (*gradient)[p] -= (k.edge_stiffness[p] * stretch / length) * m[p];
-  }
+  // minus what the diagonals store under the same homogeneous deformation (the edges' share is
+  // neo_hookean_edge_correction's, on their mean lengths)
   for (int d = 0; d < 4; ++d) {
     const Eigen::Vector3d v = homogeneous_diagonal(frame, d);
     const double length = v.norm();
@@ -133,9 +128,6 @@ MeanEdgeHessian neo_hookean_cell_hessian(const NeoHookeanConstants& k, const Cel
     h.block<3, 3>(3 * p, 3 * q) += block;
     h.block<3, 3>(3 * q, 3 * p) += block.transpose();
   }
-  for (int p = 0; p < 3; ++p) {
-    h.block<3, 3>(3 * p, 3 * p) -= spring_hessian(m[p], k.edge_stiffness[p], k.cell_size[p]);
-  }
   for (int d = 0; d < 4; ++d) {
     const Eigen::Matrix3d spring = spring_hessian(homogeneous_diagonal(frame, d), k.diagonal_stiffness, k.diagonal_length);
     for (int p = 0; p < 3; ++p) {
@@ -143,6 +135,19 @@ MeanEdgeHessian neo_hookean_cell_hessian(const NeoHookeanConstants& k, const Cel
     }
   }
   return h;
+}
+
+MeanEdgeHessian neo_hookean_edge_hessian(const NeoHookeanConstants& k, const CellFrame& frame) {
+  MeanEdgeHessian h = MeanEdgeHessian::Zero();
+  for (int p = 0; p < 3; ++p) {
+    h.block<3, 3>(3 * p, 3 * p) = -spring_hessian(frame.edge[p], k.edge_stiffness[p], k.cell_size[p]);
+  }
+  return h;
+}
+
+Eigen::Matrix3d neo_hookean_edge_correction(const NeoHookeanConstants& k) {
+  // 1/2 V0 D_pp eps_p^2 = -1/2 (4 k_p) (mean length - h_p)^2, eps_p = mean length / h_p - 1
+  return (-k.edge_stiffness.array() * k.cell_size.array().square() / k.rest_volume).matrix().asDiagonal();
 }
 
 NeoHookeanConstants neo_hookean_constants(double g, double b, const Eigen::Vector3d& cell_size,

@@ -5,8 +5,9 @@
 // edge vectors m_p = 1/4 sum_k s_p(k) x_k (CellFrame), so F = [m_x / hx, m_y / hy, m_z / hz] is
 // the deformation gradient at the cell's centre; the term is
 //   C(m) = V0 W(F) - S(m),
-// W the neo-Hookean energy density with its inversion barrier, S what the cell's springs store
-// when the cell deforms homogeneously with that F.
+// W the neo-Hookean energy density with its inversion barrier, S what the cell's diagonals store
+// when the cell deforms homogeneously with that F; the edges' share of what the springs store
+// is a correction on the mean edge lengths (neo_hookean_edge_correction).
 #pragma once
 
 #include <array>
@@ -29,6 +30,19 @@ double neo_hookean_cell_energy(const NeoHookeanConstants& constants, const CellF
 
 /// d2C/dm dm at the frame (the exact Hessian: indefinite at rest, as the paper's correction is).
 MeanEdgeHessian neo_hookean_cell_hessian(const NeoHookeanConstants& constants, const CellFrame& frame);
+
+/// What the edges' share of S would add to that Hessian were it a function of the mean edge
+/// vectors, -d2/dm dm sum_p 1/2 (4 k_p) (|m_p| - h_p)^2: the positive semi-definite approximation
+/// projects the two together, as it did before the share moved to the mean lengths (at rest the
+/// two forms agree to second order).
+MeanEdgeHessian neo_hookean_edge_hessian(const NeoHookeanConstants& constants, const CellFrame& frame);
+
+/// The edges' share of S as a correction on the cell's mean edge strains (Model::cell_correction):
+/// D = diag(-4 k_p h_p^2 / V0), so that 1/2 V0 eps^T D eps = -sum_p 1/2 (4 k_p) (mean length_p - h_p)^2.
+/// On the mean of the 4 edges' lengths rather than on |m_p|: under compression the term then takes
+/// the edges' tension off each edge, not off the mean deformation only, and the edges' compression
+/// no longer softens the cell's non-affine modes (docs/model-neo-hookean.md section 3).
+Eigen::Matrix3d neo_hookean_edge_correction(const NeoHookeanConstants& constants);
 
 /// The force on each of the cell's 8 corners [N] from the gradient: f_k = -1/4 sum_p s_p(k) dC/dm_p.
 inline std::array<Eigen::Vector3d, kCornersPerCell> corner_forces(const MeanEdgeGradient& gradient) {

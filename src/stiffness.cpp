@@ -192,8 +192,13 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
 // the approximation takes H's positive part (its negative eigenvalues set to zero).
 void StiffnessAssembler::add_neo_hookean(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact,
                                          double stiffness_scale, const NodeRows& rows, SparseMatrix& matrix) const {
-  MeanEdgeHessian h = neo_hookean_cell_hessian(model.law_constants[model.cell_material[c]], cell_frame(model, x, c));
+  const NeoHookeanConstants& constants = model.law_constants[model.cell_material[c]];
+  const CellFrame frame = cell_frame(model, x, c);
+  MeanEdgeHessian h = neo_hookean_cell_hessian(constants, frame);
   if (!exact) {
+    // the edges' share as a function of the mean edge vectors, projected with the rest (its exact
+    // form, on the mean edge lengths, is the cell's correction, which the approximation leaves out)
+    h += neo_hookean_edge_hessian(constants, frame);
     const Eigen::SelfAdjointEigenSolver<MeanEdgeHessian> solver(h);
     h = solver.eigenvectors() * solver.eigenvalues().cwiseMax(0.0).asDiagonal() * solver.eigenvectors().transpose();
   }
@@ -301,15 +306,12 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
   for (int c = corner_0_below(rows.begin - cell_span_); c < cell_end; ++c) {
     const auto& corners = model.cell_nodes[c];
     if (std::none_of(corners.begin(), corners.end(), [&](int n) { return rows.has(n); })) continue;
-    if (model.cell_law == CellLaw::kNeoHookean) {
-      add_neo_hookean(model, x, c, exact, stiffness_scale, rows, matrix);
-      if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
-        add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], rows, matrix);
-      }
-      continue;
-    }
+    const bool neo_hookean = model.cell_law == CellLaw::kNeoHookean;
+    if (neo_hookean) add_neo_hookean(model, x, c, exact, stiffness_scale, rows, matrix);
+    // the neo-Hookean term's edge correction is exact only: its approximation is add_neo_hookean's
     const Eigen::Matrix3d& d = exact ? model.cell_correction[c] : positive_correction_[c];
-    const double beta = model.materials[model.cell_material[c]].stiffness_damping;
+    // and it has no damping (the law adds none)
+    const double beta = neo_hookean ? 0.0 : model.materials[model.cell_material[c]].stiffness_damping;
     const Eigen::Matrix3d weighted = rest_volume * (stiffness_scale + damping_scale * beta) * d;
     // strain_gradient[p] column a = d(eps_a)/d(x_p)
     std::array<Eigen::Matrix3d, kCornersPerCell> strain_gradient;
@@ -334,6 +336,7 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
     if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
       add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], rows, matrix);
     }
+    if (neo_hookean) continue;  // the law's barrier replaces the inversion recovery
 
     const CellFrame frame = cell_frame(model, x, c);
     const double ratio = frame.volume() / rest_volume;

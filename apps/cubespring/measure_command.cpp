@@ -430,13 +430,9 @@ Command add_measure_command(CLI::App& app) {
       ->capture_default_str();
   return [options, strain, model] {
     options->strain_given = strain->count() > 0;
-    // the paper's cells buckle under compression with the neo-Hookean law
-    // (docs/model-neo-hookean.md section 5): that law's default cells are exact-bending
+    // the neo-Hookean law's cells are exact-bending by default, as in scenes and the Bullet plugin
+    // (the paper's cells have zero-energy modes that frictionless supports set free)
     if (model->count() == 0) options->model = options->law == "neo-hookean" ? "exact-bending" : "baudet2007";
-    if (model->count() > 0 && options->model == "baudet2007" && options->law == "neo-hookean") {
-      std::cerr << "warning: --model baudet2007 with --law neo-hookean: the paper's cells buckle under compression "
-                   "with this law (docs/model-neo-hookean.md section 5); exact-bending cells follow it\n";
-    }
     return run_measure(*options);
   };
 }

@@ -120,8 +120,8 @@ TEST(BulletWorld, PaperModelOnFrictionlessSupportsGivesWayThroughItsZeroModes) {
 }
 
 // The neo-Hookean law (the plugin's default) runs on exact-bending cells whatever lattice.model
-// says: the paper's cells buckle under compression with it. So a user who keeps LatticeDesc's
-// default cell model gets a block that carries the punch.
+// says: the paper's cells have zero-energy modes that frictionless supports set free. So a user
+// who keeps LatticeDesc's default cell model gets a block that carries the punch.
 TEST(BulletWorld, NeoHookeanLawRunsOnExactBendingCellsWhateverTheLatticeSays) {
   for (const CellLaw law : {CellLaw::kNeoHookean, CellLaw::kSprings}) {
     BulletScene scene(Eigen::Vector3d::Zero());

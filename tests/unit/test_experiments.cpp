@@ -281,40 +281,43 @@ TEST(Experiments, NeoHookeanClosedFormsAreDerivativesOfTheEnergy) {
   }
 }
 
-// Finite-strain curves of the exact-bending cells the scenes use (4^3 cells): the nominal stress
-// within 3% of the law at every point, in tissue's range of nu (issue 24's target); at nu = 0.3
-// to 30% compression (beyond it the lattice buckles: 4.8% short at 40%, docs/model-neo-hookean.md).
-TEST(Experiments, FiniteStrainCurvesOfExactBendingCellsFollowTheLaw) {
+// Finite-strain curves of both cell models (4^3 cells): the nominal stress within 3% of the law
+// at every point (issue 24's target), in tissue's range of nu and at 0.3, from 40% compression to
+// 50% tension. They come out exact (1e-6 is asserted): the homogeneous state is the lattice's
+// equilibrium and, since the edges' share of the cell term is taken on their mean lengths, a
+// stable one (the paper's cells: neutral in their zero-energy modes). Before that, compression
+// softened the non-affine modes: exact-bending cells buckled past 30% (1.7% short at 40%), the
+// paper's under any compression (a quarter short at 5%).
+TEST(Experiments, FiniteStrainCurvesOfBothCellModelsFollowTheLaw) {
   struct Curve {
     Experiment experiment;
     double poisson, strain;
   };
   std::vector<Curve> curves;
-  for (const double nu : {0.45, 0.49}) {
-    for (const double strain : {-0.4, 0.5}) curves.push_back({Experiment::kUniaxial, nu, strain});
-  }
-  curves.push_back({Experiment::kUniaxial, 0.3, -0.3});
-  curves.push_back({Experiment::kUniaxial, 0.3, 0.5});
   for (const double nu : {0.3, 0.45, 0.49}) {
+    for (const double strain : {-0.4, 0.5}) curves.push_back({Experiment::kUniaxial, nu, strain});
     curves.push_back({Experiment::kSimpleShear, nu, 0.5});
     curves.push_back({Experiment::kHydrostatic, nu, -0.1});
     curves.push_back({Experiment::kHydrostatic, nu, 0.05});
   }
-  for (const Curve& c : curves) {
-    ExperimentSettings s;
-    s.material.young_modulus = 5e3;
-    s.material.poisson_ratio = c.poisson;
-    s.model = CellModel::kExactBending;
-    s.law = CellLaw::kNeoHookean;
-    s.cells = {4, 4, 4};
-    s.strain = c.strain;
-    s.curve_points = 4;
-    const ExperimentResult r = run(c.experiment, s);
-    ASSERT_EQ(r.curve.size(), 4u);
-    EXPECT_DOUBLE_EQ(r.curve.back().strain, c.strain);
-    for (const CurvePoint& point : r.curve) {
-      EXPECT_NEAR(point.stress, point.expected, 0.03 * std::abs(point.expected))
-          << experiment_name(c.experiment) << ", nu " << c.poisson << ", strain " << point.strain;
+  for (const CellModel model : {CellModel::kExactBending, CellModel::kBaudet2007}) {
+    for (const Curve& c : curves) {
+      ExperimentSettings s;
+      s.material.young_modulus = 5e3;
+      s.material.poisson_ratio = c.poisson;
+      s.model = model;
+      s.law = CellLaw::kNeoHookean;
+      s.cells = {4, 4, 4};
+      s.strain = c.strain;
+      s.curve_points = 4;
+      const ExperimentResult r = run(c.experiment, s);
+      ASSERT_EQ(r.curve.size(), 4u);
+      EXPECT_DOUBLE_EQ(r.curve.back().strain, c.strain);
+      for (const CurvePoint& point : r.curve) {
+        EXPECT_NEAR(point.stress, point.expected, 1e-6 * std::abs(point.expected))
+            << cell_model_name(model) << ", " << experiment_name(c.experiment) << ", nu " << c.poisson << ", strain "
+            << point.strain;
+      }
     }
   }
 }
@@ -369,23 +372,6 @@ TEST(Experiments, UniaxialStressAlongARotatedAxisFollowsTheLaw) {
       EXPECT_LT(error, 0.03) << "nu " << nu << ", strain " << strain;
     }
   }
-}
-
-// The paper's cells with the neo-Hookean law have modes that compression makes unstable: at 5%
-// the homogeneous state is an unstable equilibrium, and the stable one the solver reaches carries
-// a quarter less than the law. A known defect (docs/model-neo-hookean.md section 5), held here so
-// that a change to it shows.
-TEST(Experiments, PaperCellsWithTheNeoHookeanLawBuckleUnderCompression) {
-  ExperimentSettings s;
-  s.material.young_modulus = 5e3;
-  s.material.poisson_ratio = 0.45;
-  s.model = CellModel::kBaudet2007;
-  s.law = CellLaw::kNeoHookean;
-  s.cells = {4, 4, 4};
-  s.strain = -0.05;
-  s.curve_points = 1;
-  const ExperimentResult r = run(Experiment::kUniaxial, s);
-  EXPECT_LT(std::abs(r.curve.back().stress), 0.9 * std::abs(r.curve.back().expected));
 }
 
 TEST(Experiments, RejectBadSettings) {

@@ -44,7 +44,7 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   }
   LatticeDesc lattice = settings.lattice;
   lattice.law = settings.law;
-  // the paper's cells have non-affine modes that the law's compression softens into buckling
+  // the paper's cells have zero-energy modes that frictionless contacts set free
   if (settings.law == CellLaw::kNeoHookean) lattice.model = CellModel::kExactBending;
   Result<Model> model = build_model(lattice);
   if (!model) return model.status();

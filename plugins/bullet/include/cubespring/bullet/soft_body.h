@@ -52,10 +52,10 @@ struct SoftBodySettings {
   /// The cells' large-strain law, which replaces lattice.law: neo-Hookean by default, since tissue
   /// is soft and lives at large strain (a 5 kPa organ under its own weight crushes the springs
   /// law's cells; docs/model-neo-hookean.md). The neo-Hookean law runs on exact-bending cells
-  /// whatever lattice.model says (lattice.exact_bending is read): the paper's cells buckle under
-  /// any compression with it (docs/model-neo-hookean.md section 5). kSprings steps lattice.model
-  /// as calibrated, the paper's model included, on the faster grid passes. model().cell_model
-  /// tells which cells a body has.
+  /// whatever lattice.model says (lattice.exact_bending is read): the paper's cells have
+  /// zero-energy modes that contacts on frictionless supports set free (docs/model-exact-bending.md).
+  /// kSprings steps lattice.model as calibrated, the paper's model included, on the faster grid
+  /// passes. model().cell_model tells which cells a body has.
   CellLaw law = CellLaw::kNeoHookean;
   /// The surface the user sees, embedded in the lattice; contact acts on it, its edges split to
   /// at most 1.5 cells (surface_vertices()). Without one, contact acts on the nodes of the
