@@ -40,7 +40,10 @@ enum LayerSlot : int {
   // per face normal d, the face at g: 0.5 (Q_d of the cell at g - unit(d), minus Q_d of the
   // cell at g) (twist only)
   kFaceTwist = kCellTwist + 3,
-  kSlots = kFaceTwist + 3
+  // per axis p, x, y, z: a quarter of the neo-Hookean term's dC/dm_p of the cell at g, the force
+  // each of the cell's 4 edges along p puts on its first end (neo-Hookean bodies only)
+  kCellNeoHookean = kFaceTwist + 3,
+  kSlots = kCellNeoHookean + 9
 };
 constexpr int kLayerSlots = kSlots - kGridSlots;
 // The passes of layer L read the temporaries of layers L - 1 to L + 1 (run_chunk).

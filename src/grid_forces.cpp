@@ -7,11 +7,13 @@
 //      vector; the 4 diagonals of a cell at once (no correction: their force), from its 8
 //      corners, which also give the signed volume of its mean edge vectors -> crushed cells
 //      (docs/model-baudet2007.md section 5);
+//      neo-Hookean bodies: the law's cell term from the 8 corners (1b; docs/model-neo-hookean.md);
 //   2. cells: mean edge strains -> correction tension per axis (section 3);
 //   3. edges: force = (own tension + the correction of the up to 4 cells of the edge) x unit vector;
 //   the exact-bending twist, by faces (below), when the body has it: its cells' coefficients in
 //      pass 1 (from the corners the diagonals read), each face's difference of its two cells'
-//      coefficients in pass 3a, its edge forces in pass 3b;
+//      coefficients in pass 3a, its edge forces in pass 3b; the neo-Hookean term's edge forces
+//      from the up to 4 cells of the edge (3c);
 //   4. points: force = sum over families of the force of the springs that start there minus that
 //      of those that end there (a gather: no two points write the same place, so threads write
 //      nothing another writes, and the sums do not depend on the thread count).
@@ -32,6 +34,7 @@
 #include "cubespring/forces.h"
 #include "force_passes.h"
 #include "grid_arrays.h"
+#include "neo_hookean_cell.h"
 #include "thread_shares.h"
 #include "vector_clones.h"
 
@@ -317,6 +320,44 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
   }
 }
 
+// Pass 1b, neo-Hookean bodies only, on one z-layer of cells: the law's term of each cell
+// (neo_hookean_cell.h, the function the spring lists call), from its 8 corners' mean edge
+// vectors m_p; a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end
+// (corner_forces: f_k = -1/4 sum_p s_p(k) dC/dm_p). A plain loop: the term takes a cube root
+// and a branch for the barrier, which do not vectorise.
+void neo_hookean_cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
+  const int count = layer_points(grid, grid.cell_rows);
+  const int sy = grid.stride_y, sz = grid.stride_z;
+  const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};  // corner c at g + step[c]
+  const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
+  const int* law = grid.cell_law.data() + static_cast<std::size_t>(slab) * grid.stride_z;
+  double* out[9];
+  for (int i = 0; i < 9; ++i) out[i] = a.out(kCellNeoHookean + i, slab);
+  for (int g = 0; g < count; ++g) {
+    if (law[g] < 0) {
+      for (double* o : out) o[g] = 0.0;
+      continue;
+    }
+    CellFrame frame;
+    for (int c = 0; c < 3; ++c) {
+      const double* p = position[c];
+      double corner[8];
+      for (int k = 0; k < 8; ++k) corner[k] = p[g + step[k]];
+      frame.edge[0][c] = 0.25 * (((corner[1] - corner[0]) + (corner[3] - corner[2])) +
+                                 ((corner[5] - corner[4]) + (corner[7] - corner[6])));
+      frame.edge[1][c] = 0.25 * (((corner[2] - corner[0]) + (corner[3] - corner[1])) +
+                                 ((corner[6] - corner[4]) + (corner[7] - corner[5])));
+      frame.edge[2][c] = 0.25 * (((corner[4] - corner[0]) + (corner[5] - corner[1])) +
+                                 ((corner[6] - corner[2]) + (corner[7] - corner[3])));
+    }
+    MeanEdgeGradient gradient;
+    (void)neo_hookean_cell_energy(grid.law_constants[law[g]], frame, &gradient);
+    for (int p = 0; p < 3; ++p) {
+      for (int c = 0; c < 3; ++c) out[3 * p + c][g] = 0.25 * gradient[p][c];
+    }
+  }
+}
+
 // Pass 3 for edge family f on one z-layer: the edge at g belongs to the cells at g, g - b, g - c,
 // g - b - c (b, c the other two axes).
 CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
@@ -338,6 +379,25 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
     fx[g] *= total;
     fy[g] *= total;
     fz[g] *= total;
+  }
+}
+
+// Pass 3c, neo-Hookean bodies only: each edge of family f on one z-layer adds what its up to 4
+// cells' term puts on its first end (neo_hookean_cell_pass).
+CUBESPRING_VECTOR_CLONES void neo_hookean_edge_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
+  const SpringFamily& family = grid.families[f];
+  if (slab >= family.slabs) return;
+  const int count = layer_points(grid, family.rows);
+  const Eigen::Vector3i b = unit((f + 1) % 3), c = unit((f + 2) % 3);
+  for (int k = 0; k < 3; ++k) {
+    const int slot = kCellNeoHookean + 3 * f + k;
+    const double* __restrict at_0 = a.in(slot, slab);
+    const double* __restrict at_b = a.in(slot, slab, -b);
+    const double* __restrict at_c = a.in(slot, slab, -c);
+    const double* __restrict at_bc = a.in(slot, slab, -b - c);
+    double* __restrict out = a.out(kFamilyForce + 3 * f + k, slab);
+#pragma omp simd
+    for (int g = 0; g < count; ++g) out[g] += (at_0[g] + at_b[g]) + (at_c[g] + at_bc[g]);
   }
 }
 
@@ -447,7 +507,10 @@ struct LayerPasses {
     if (families <= kEdgeFamilies || slab >= grid.cell_slabs) return 0;  // the top layer: no diagonals
     bool uniform = !grid.has_twist || grid.uniform_cells;  // the twist's constants, and the diagonals'
     for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
-    return with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
+    const int crushed = with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
+    if (!grid.neo_hookean) return crushed;
+    neo_hookean_cell_pass(grid, slab, a);
+    return 0;  // the law's barrier replaces the crushed cells' recovery
   }
   template <bool kWithRate>
   int diagonals_of_kind(int slab, bool uniform) const {
@@ -478,6 +541,7 @@ struct LayerPasses {
     for (int f = first_family; f < end_family; ++f) {
       edge_tension_pass(grid, f, slab, a);
       if (grid.has_twist) twist_edge_pass(grid, f, slab, a);
+      if (grid.neo_hookean) neo_hookean_edge_pass(grid, f, slab, a);
     }
   }
   void gather(int slab) const { gather_pass(grid, slab, a); }  // needs tensions of slab, slab - 1

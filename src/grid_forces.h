@@ -1,8 +1,8 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The internal forces of a body on its dense grid (grid_layout.h): the same springs, correction,
-// twist and crushed-cell test as the spring-list passes of forces.cpp, with springs found by index
-// arithmetic (docs/data-layout.md, "Dense bodies: the grid passes").
+// twist, neo-Hookean cell term and crushed-cell test as the spring-list passes of forces.cpp, with
+// springs found by index arithmetic (docs/data-layout.md, "Dense bodies: the grid passes").
 #pragma once
 
 #include <vector>
@@ -27,8 +27,9 @@ struct GridForces {
   double fastest_sq = 0.0;  ///< with a kick: the largest squared speed [m^2/s^2], NaN if not finite
 };
 
-/// Spring, correction and twist forces [N] on every node into `forces` (3 x num_nodes), with the
-/// springs' and correction's Rayleigh damping when with_rate. No inversion recovery. When `kick`
+/// Spring, correction, twist and neo-Hookean forces [N] on every node into `forces` (3 x
+/// num_nodes), with the springs' and correction's Rayleigh damping when with_rate. No inversion
+/// recovery (a neo-Hookean body has none: its crushed count is 0). When `kick`
 /// is given, the forces also get the loads and mass damping and every node its kick
 /// (grid_kick.h); when cells are crushed, the caller then redoes the nodes of those cells, whose
 /// spring forces grid_spring_force() gives, with their recovery. `scratch` keeps the grid's

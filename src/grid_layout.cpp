@@ -68,8 +68,8 @@ void set_uniform_family(GridLayout& grid, int f) {
 }  // namespace
 
 std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double min_fill) {
-  // the grid passes have the springs law's correction only: a neo-Hookean body takes the lists
-  if (model.cell_law != CellLaw::kSprings || model.num_cells() == 0 ||
+  const bool neo_hookean = model.cell_law == CellLaw::kNeoHookean;
+  if (model.num_cells() == 0 || (neo_hookean && model.law_constants.size() != model.materials.size()) ||
       static_cast<int>(model.cell_grid_index.size()) != model.num_cells() ||
       static_cast<int>(model.node_grid_index.size()) != model.num_nodes()) {
     return nullptr;
@@ -167,6 +167,15 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   if (model.has_twist) grid.cell_twist.assign(size, 0.0);
   grid.cell_rows = cells.y();
   grid.cell_slabs = cells.z();
+  grid.neo_hookean = neo_hookean;
+  if (neo_hookean) {
+    grid.cell_law.assign(size, -1);
+    for (NeoHookeanConstants constants : model.law_constants) {  // along the grid's axes
+      constants.cell_size = constants.cell_size(grid.model_axis).eval();
+      constants.edge_stiffness = constants.edge_stiffness(grid.model_axis).eval();
+      grid.law_constants.push_back(constants);
+    }
+  }
   for (int c = 0; c < model.num_cells(); ++c) {
     const int point = grid.point(model.cell_grid_index[c]);
     const Eigen::Matrix3d d = model.cell_correction[c](grid.model_axis, grid.model_axis);
@@ -176,7 +185,8 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
     for (int i = 0; i < 6; ++i) grid.correction[i][point] = coefficients[i];
     grid.cell_occupied[grid.occupied_padding() + point] = 1.0;
     if (model.has_twist) grid.cell_twist[point] = model.cell_twist_stiffness[c];
-    if (model.has_stiffness_damping) {
+    if (neo_hookean) grid.cell_law[point] = model.cell_material[c];
+    if (model.has_stiffness_damping && !neo_hookean) {  // the neo-Hookean term's correction has no rate
       grid.cell_beta[point] = model.materials[model.cell_material[c]].stiffness_damping;
     }
   }

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "cubespring/cell_law.h"
 #include "cubespring/model.h"
 
 namespace cubespring {
@@ -71,6 +72,15 @@ struct GridLayout {
   double uniform_twist = 0.0;                  ///< [Pa]
   double uniform_beta = 0.0;                   ///< [s]
 
+  /// A neo-Hookean body (Model::cell_law): its cells add the law's term (neo_hookean_cell.h) and
+  /// have no crushed-cell recovery; `correction` is the term's edge correction, `cell_beta` zero
+  /// (the law adds no damping to it).
+  bool neo_hookean = false;
+  /// The law's constants of each material, along the grid's axes.
+  std::vector<NeoHookeanConstants> law_constants;
+  /// The index into law_constants of the cell at each point, -1 where there is none.
+  std::vector<int> cell_law;
+
   int occupied_padding() const { return stride_z + stride_y + 1; }
   /// cell_occupied from the first point of layer `slab`.
   const double* occupied_from_layer(int slab) const {
@@ -103,7 +113,7 @@ inline bool on_consecutive_points(const int* point_of_node, int begin, int end) 
 
 /// The grid layout of a built model, or null when the model does not suit it: a box filled less
 /// than min_fill (the grid passes spend their work on every point of the box), or cells whose
-/// springs are not the lattice's.
+/// springs are not the lattice's. Either cell law.
 std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double min_fill = kDefaultMinGridFill);
 
 }  // namespace cubespring

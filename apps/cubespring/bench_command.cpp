@@ -62,6 +62,9 @@ struct Row {
   double implicit_step = 0, implicit_step2 = 0;  // 1 and 2 threads
   double two_bodies = 0;  // two copies of the body's 1-thread symplectic step at once, on 2 threads
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
+  // the same with the neo-Hookean law, on the passes build_model chose and on the spring lists
+  double neo_hookean1 = 0, neo_hookean_lists1 = 0;
+  bool neo_hookean_on_grid = false;
   int implicit_iterations = 0;
 };
 
@@ -102,22 +105,35 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   desc.model = CellModel::kExactBending;
   Result<Model> exact = build_model(desc);
   if (!exact) throw std::runtime_error(exact.message());
+  // and with the neo-Hookean law (the scenes' default), on its grid passes and on the lists
+  desc.law = CellLaw::kNeoHookean;
+  Result<Model> neo_hookean = build_model(desc);
+  if (!neo_hookean) throw std::runtime_error(neo_hookean.message());
+  row.neo_hookean_on_grid = neo_hookean.value().grid_layout != nullptr;
+  Model neo_hookean_lists = neo_hookean.value();
+  neo_hookean_lists.grid_layout.reset();
 
   Eigen::Matrix3Xd forces(3, model.num_nodes());
   // half the stable step, found once per model (it assembles the stiffness)
   const double dt = 0.5 * max_stable_time_step(model);
   const double exact_dt = 0.5 * max_stable_time_step(exact.value());
+  const double neo_hookean_dt = 0.5 * max_stable_time_step(neo_hookean.value());
   ExplicitStepper symplectic1(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
   ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1, dt);
   ExplicitStepper verlet2(model, clamp, loads, start, Integrator::kVelocityVerlet, 2, dt);
   ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1, exact_dt);
+  ExplicitStepper neo_hookean1(neo_hookean.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1,
+                               neo_hookean_dt);
+  ExplicitStepper neo_hookean_lists1(neo_hookean_lists, clamp, loads, start, Integrator::kSymplecticEuler, 1,
+                                     neo_hookean_dt);
   ExplicitStepper first_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   ExplicitStepper second_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   const TwoAtOnce two_bodies(std::ref(first_body), std::ref(second_body));
   std::vector<std::function<void()>> columns{[&] { bare_spring_pass(model, start.positions, forces); },
                                              std::ref(symplectic1), std::ref(symplectic2), std::ref(verlet1),
-                                             std::ref(exact1), std::ref(two_bodies), std::ref(verlet2)};
+                                             std::ref(exact1), std::ref(two_bodies), std::ref(verlet2),
+                                             std::ref(neo_hookean1), std::ref(neo_hookean_lists1)};
   std::unique_ptr<GridSpringFloor> floor;
   if (box != nullptr) {
     const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
@@ -134,12 +150,14 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   row.exact_bending1 = times[4];
   row.two_bodies = times[5];
   row.verlet2 = times[6];
+  row.neo_hookean1 = times[7];
+  row.neo_hookean_lists1 = times[8];
   if (floor) {
     if (floor->springs() != model.num_springs() || !std::isfinite(floor->checksum())) {
       throw std::runtime_error("the grid floor of " + name + " visited " + std::to_string(floor->springs()) +
                                " springs, the model has " + std::to_string(model.num_springs()));
     }
-    row.grid_bare = times[7];
+    row.grid_bare = times[9];
   }
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
@@ -196,6 +214,10 @@ int run_bench(const BenchOptions& o) {
                      {"two_thread_ceiling", 2.0 * r.symplectic1 / r.two_bodies},
                      {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}, {"2", 1e3 * r.verlet2}}},
                      {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
+                     {"neo_hookean_symplectic_euler_ms", {{"1", 1e3 * r.neo_hookean1}}},
+                     {"neo_hookean_on_grid", r.neo_hookean_on_grid},
+                     {"neo_hookean_spring_lists_symplectic_euler_ms", {{"1", 1e3 * r.neo_hookean_lists1}}},
+                     {"neo_hookean_over_exact_bending", r.neo_hookean1 / r.exact_bending1},
                      {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
                      {"implicit_euler_threads_ms", r.implicit_step > 0 ? nlohmann::json{{"1", 1e3 * r.implicit_step},
                                                                                       {"2", 1e3 * r.implicit_step2}}
@@ -209,10 +231,10 @@ int run_bench(const BenchOptions& o) {
   std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"
               ">= %.2f s each, the explicit columns together and the implicit ones together)\n",
               kBatches, o.min_seconds / kBatches);
-  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %10s %5s %10s %10s\n",
+  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %10s %5s %10s %10s\n",
               "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling",
               "full/bare", "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap",
-              "implicit", "CG it", "s/sim s", "impl 2t");
+              "nh 1t", "nh/exact", "nh lists", "implicit", "CG it", "s/sim s", "impl 2t");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -220,11 +242,13 @@ int run_bench(const BenchOptions& o) {
       std::snprintf(over_grid, sizeof over_grid, "%.2f", r.symplectic1 / r.grid_bare);
       std::snprintf(grid_rate, sizeof grid_rate, "%.3f", 1e-9 * r.springs / r.grid_bare);
     }
-    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %9.4f %7.2f |",
+    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %9.4f %7.2f |"
+                " %9.4f %7.2f %9.4f |",
                 r.name.c_str(), r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1,
                 1e3 * r.symplectic2, r.symplectic1 / r.symplectic2, 2.0 * r.symplectic1 / r.two_bodies,
                 r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate, 1e3 * r.verlet1,
-                1e3 * r.verlet2, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1);
+                1e3 * r.verlet2, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1, 1e3 * r.neo_hookean1,
+                r.neo_hookean1 / r.exact_bending1, 1e3 * r.neo_hookean_lists1);
     if (r.implicit_step > 0) {
       std::printf(" %10.3f %5d %10.2f %10.3f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3,
                   1e3 * r.implicit_step2);
@@ -240,6 +264,8 @@ int run_bench(const BenchOptions& o) {
               "it a little, as each half's arrays fit the caches better); full/bare, full/grid:\n"
               "1-thread step over each floor; Gspring/s, grid G/s: springs per second of each floor;\n"
               "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
+              "nh 1t: exact-bending cells with the neo-Hookean law (the scenes' default), nh/exact its cost over exact 1t;\n"
+              "nh lists: the same on the spring lists (where the grid passes do not take the body, as nh 1t);\n"
               "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
               "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads.\n");
   return 0;

@@ -220,7 +220,8 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
 }
 
 // The grid passes (bodies that fill at least 45% of their bounding box) add the same springs,
-// correction, twist, damping and inversion recovery as the spring lists, to rounding: a box, a
+// correction, twist, damping and inversion recovery (or the neo-Hookean law's cell term, each
+// body with either law) as the spring lists, to rounding: a box, a
 // box with holes and a stiff inclusion of another material, the same holes in one material, in
 // both models, each with a crushed cell and with a spring of zero length (no direction: no force);
 // and boxes numbered along x (non-cubic cells, an inclusion) and y (exact-bending).
@@ -261,7 +262,11 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
       {"exact-bending holes and inclusion", exact_holes, 2},
       {"box along x, inclusion", along_x, 0},
       {"exact-bending box along y", exact_along_y, 1}};
-  for (const auto& [name, desc, major_axis] : bodies) {
+  for (const auto& [body, body_desc, major_axis] : bodies) {
+   for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
+    LatticeDesc desc = body_desc;
+    desc.law = law;
+    const std::string name = std::string(body) + ", " + cell_law_name(law);
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     const Model& grid = built.value();
@@ -289,6 +294,7 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
             << name << (crushed ? ", crushed" : "") << (damping ? "" : ", no damping");
       }
     }
+   }
   }
 }
 
