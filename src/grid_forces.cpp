@@ -321,39 +321,51 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
 }
 
 // Pass 1b, neo-Hookean bodies only, on one z-layer of cells: the law's term of each cell
-// (neo_hookean_cell.h, the function the spring lists call), from its 8 corners' mean edge
-// vectors m_p; a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end
-// (corner_forces: f_k = -1/4 sum_p s_p(k) dC/dm_p). A plain loop: the term takes a cube root
-// and a branch for the barrier, which do not vectorise.
-void neo_hookean_cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
+// (neo_hookean_term, which the spring lists call too) from its 8 corners' mean edge vectors m_p;
+// a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end (corner_forces:
+// f_k = -1/4 sum_p s_p(k) dC/dm_p). kUniform: a body of one material, whose loop vectorises;
+// cells of several take their constants one by one.
+// The cell at g of neo_hookean_cell_pass (a function the vectorised loop inlines).
+// `quarter`: 1/4 for a cell of the body, 0 for an empty one (whose term is finite: its corners are
+// the body's nodes and the rest points around them).
+[[gnu::always_inline]] inline void neo_hookean_cell_at(int g, const NeoHookeanConstants& constants, double quarter,
+                                                       const double* const (&position)[3], const int (&step)[8],
+                                                       double* const (&out)[9]) {
+  double m[3][3];
+#pragma GCC unroll 3
+  for (int c = 0; c < 3; ++c) {
+    const double* p = position[c];
+    const double p0 = p[g + step[0]], p1 = p[g + step[1]], p2 = p[g + step[2]], p3 = p[g + step[3]];
+    const double p4 = p[g + step[4]], p5 = p[g + step[5]], p6 = p[g + step[6]], p7 = p[g + step[7]];
+    m[0][c] = 0.25 * (((p1 - p0) + (p3 - p2)) + ((p5 - p4) + (p7 - p6)));
+    m[1][c] = 0.25 * (((p2 - p0) + (p3 - p1)) + ((p6 - p4) + (p7 - p5)));
+    m[2][c] = 0.25 * (((p4 - p0) + (p5 - p1)) + ((p6 - p2) + (p7 - p3)));
+  }
+  double gradient[3][3];
+  (void)neo_hookean_term(constants, m, gradient);
+#pragma GCC unroll 3
+  for (int p = 0; p < 3; ++p) {
+#pragma GCC unroll 3
+    for (int c = 0; c < 3; ++c) out[3 * p + c][g] = quarter * gradient[p][c];
+  }
+}
+
+template <bool kUniform>
+CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.cell_rows);
   const int sy = grid.stride_y, sz = grid.stride_z;
   const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};  // corner c at g + step[c]
-  const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
-  const int* law = grid.cell_law.data() + static_cast<std::size_t>(slab) * grid.stride_z;
+  const double* const position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
+  const int* __restrict law = grid.cell_law.data() + static_cast<std::size_t>(slab) * grid.stride_z;
   double* out[9];
   for (int i = 0; i < 9; ++i) out[i] = a.out(kCellNeoHookean + i, slab);
-  for (int g = 0; g < count; ++g) {
-    if (law[g] < 0) {
-      for (double* o : out) o[g] = 0.0;
-      continue;
-    }
-    CellFrame frame;
-    for (int c = 0; c < 3; ++c) {
-      const double* p = position[c];
-      double corner[8];
-      for (int k = 0; k < 8; ++k) corner[k] = p[g + step[k]];
-      frame.edge[0][c] = 0.25 * (((corner[1] - corner[0]) + (corner[3] - corner[2])) +
-                                 ((corner[5] - corner[4]) + (corner[7] - corner[6])));
-      frame.edge[1][c] = 0.25 * (((corner[2] - corner[0]) + (corner[3] - corner[1])) +
-                                 ((corner[6] - corner[4]) + (corner[7] - corner[5])));
-      frame.edge[2][c] = 0.25 * (((corner[4] - corner[0]) + (corner[5] - corner[1])) +
-                                 ((corner[6] - corner[2]) + (corner[7] - corner[3])));
-    }
-    MeanEdgeGradient gradient;
-    (void)neo_hookean_cell_energy(grid.law_constants[law[g]], frame, &gradient);
-    for (int p = 0; p < 3; ++p) {
-      for (int c = 0; c < 3; ++c) out[3 * p + c][g] = 0.25 * gradient[p][c];
+  if constexpr (kUniform) {
+    const NeoHookeanConstants& uniform = grid.law_constants.front();
+#pragma omp simd
+    for (int g = 0; g < count; ++g) neo_hookean_cell_at(g, uniform, law[g] >= 0 ? 0.25 : 0.0, position, step, out);
+  } else {
+    for (int g = 0; g < count; ++g) {
+      neo_hookean_cell_at(g, grid.law_constants[std::max(law[g], 0)], law[g] >= 0 ? 0.25 : 0.0, position, step, out);
     }
   }
 }
@@ -509,7 +521,8 @@ struct LayerPasses {
     for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
     const int crushed = with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
     if (!grid.neo_hookean) return crushed;
-    neo_hookean_cell_pass(grid, slab, a);
+    grid.law_constants.size() == 1 ? neo_hookean_cell_pass<true>(grid, slab, a)
+                                   : neo_hookean_cell_pass<false>(grid, slab, a);
     return 0;  // the law's barrier replaces the crushed cells' recovery
   }
   template <bool kWithRate>

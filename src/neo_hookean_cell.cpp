@@ -8,14 +8,11 @@
 namespace cubespring {
 namespace {
 
-// A function of J with its first two derivatives.
+// A function of J with its first two derivatives (the Hessian's; neo_hookean_term has the same
+// curves, written as selects).
 struct Curve {
   double value, slope, curvature;
 };
-
-// Below this J the volume terms go on as their second-order Taylor polynomials from it: finite
-// for a cell turned inside out (J <= 0), where the barrier's steep slope pushes it back out.
-constexpr double kSmallestVolumeRatio = 0.05;
 
 Curve taylor_from(const Curve& at, double from, double j) {
   const double d = j - from;
@@ -27,7 +24,8 @@ Curve isochoric_scale(double j) {
   if (!(j >= kSmallestVolumeRatio)) {
     return taylor_from(isochoric_scale(kSmallestVolumeRatio), kSmallestVolumeRatio, j);
   }
-  const double value = 1.0 / std::cbrt(j * j);
+  const double inverse_root = lattice_inverse_cube_root(j);  // as neo_hookean_term takes it
+  const double value = inverse_root * inverse_root;
   return {value, -2.0 / 3.0 * value / j, 10.0 / 9.0 * value / (j * j)};
 }
 
@@ -69,32 +67,13 @@ Eigen::Matrix3d spring_hessian(const Eigen::Vector3d& v, double k, double rest) 
 }  // namespace
 
 double neo_hookean_cell_energy(const NeoHookeanConstants& k, const CellFrame& frame, MeanEdgeGradient* gradient) {
-  const std::array<Eigen::Vector3d, 3>& m = frame.edge;
-  const Eigen::Array3d inverse_sq = k.cell_size.array().square().inverse();
-  const double i1 = m[0].squaredNorm() * inverse_sq[0] + m[1].squaredNorm() * inverse_sq[1] +
-                    m[2].squaredNorm() * inverse_sq[2];
-  // V0 dJ/dm_p
-  const std::array<Eigen::Vector3d, 3> cofactor{m[1].cross(m[2]), m[2].cross(m[0]), m[0].cross(m[1])};
-  const double j = m[0].dot(cofactor[0]) / k.rest_volume;
-  const Curve scale = isochoric_scale(j);
-  const Curve volume = volume_energy(k, j);
-  double energy = k.rest_volume * (k.c10 * (scale.value * i1 - 3.0) + volume.value);
-  if (gradient != nullptr) {
-    const double per_j = k.c10 * scale.slope * i1 + volume.slope;  // dW/dJ
-    for (int p = 0; p < 3; ++p) {
-      (*gradient)[p] = per_j * cofactor[p] + (2.0 * k.rest_volume * k.c10 * scale.value * inverse_sq[p]) * m[p];
-    }
+  double m[3][3], g[3][3];
+  for (int p = 0; p < 3; ++p) {
+    for (int c = 0; c < 3; ++c) m[p][c] = frame.edge[p][c];
   }
-  // minus what the diagonals store under the same homogeneous deformation (the edges' share is
-  // neo_hookean_edge_correction's, on their mean lengths)
-  for (int d = 0; d < 4; ++d) {
-    const Eigen::Vector3d v = homogeneous_diagonal(frame, d);
-    const double length = v.norm();
-    const double stretch = length - k.diagonal_length;
-    energy -= 0.5 * k.diagonal_stiffness * stretch * stretch;
-    if (gradient == nullptr || length <= 0.0) continue;
-    const Eigen::Vector3d pull = (k.diagonal_stiffness * stretch / length) * v;
-    for (int p = 0; p < 3; ++p) (*gradient)[p] -= diagonal_sign(d, p) * pull;
+  const double energy = neo_hookean_term(k, m, g);
+  if (gradient != nullptr) {
+    for (int p = 0; p < 3; ++p) (*gradient)[p] = Eigen::Vector3d(g[p][0], g[p][1], g[p][2]);
   }
   return energy;
 }
