@@ -320,14 +320,9 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
   }
 }
 
-// Pass 1b, neo-Hookean bodies only, on one z-layer of cells: the law's term of each cell
-// (neo_hookean_term, which the spring lists call too) from its 8 corners' mean edge vectors m_p;
-// a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end (corner_forces:
-// f_k = -1/4 sum_p s_p(k) dC/dm_p). kUniform: a body of one material, whose loop vectorises;
-// cells of several take their constants one by one.
-// The cell at g of neo_hookean_cell_pass (a function the vectorised loop inlines).
-// `quarter`: 1/4 for a cell of the body, 0 for an empty one (whose term is finite: its corners are
-// the body's nodes and the rest points around them).
+// The cell at g of neo_hookean_cell_pass (a function the vectorised loop inlines). `quarter`: 1/4
+// for a cell of the body, 0 for an empty one, whose term is as finite as the body's nodes (its
+// corners are those nodes and the rest points around them; a select here kept the loop scalar).
 [[gnu::always_inline]] inline void neo_hookean_cell_at(int g, const NeoHookeanConstants& constants, double quarter,
                                                        const double* const (&position)[3], const int (&step)[8],
                                                        double* const (&out)[9]) {
@@ -350,6 +345,11 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
   }
 }
 
+// Pass 1b, neo-Hookean bodies only, on one z-layer of cells: the law's term of each cell
+// (neo_hookean_term, which the spring lists call too) from its 8 corners' mean edge vectors m_p;
+// a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end (corner_forces:
+// f_k = -1/4 sum_p s_p(k) dC/dm_p). kUniform: a body of one material, whose loop vectorises;
+// cells of several take their constants one by one.
 template <bool kUniform>
 CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.cell_rows);
