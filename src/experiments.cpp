@@ -142,17 +142,20 @@ Eigen::Vector3d lattice_shear_moduli(const Model& model) {
   return moduli;
 }
 
-// The z displacement at the centre of the top face: the mean of the top nodes nearest to it (one
-// when both counts of cells across are even, else 2 or 4), which is the bilinear value there.
-double top_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells) {
+// The displacement along `axis` at the centre of the body's far face normal to it (index
+// cells[axis]): the mean of the face's nodes nearest to its centre (one when both other counts of
+// cells are even, else 2 or 4), which is the bilinear value there.
+double face_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells,
+                                int axis) {
+  const int a = (axis + 1) % 3, b = (axis + 2) % 3;
   double sum = 0.0;
   int count = 0;
   for (int n = 0; n < model.num_nodes(); ++n) {
     const Eigen::Vector3i& index = model.node_grid_index[n];
-    if (index.z() != cells.z()) continue;
+    if (index[axis] != cells[axis]) continue;
     // twice the distance from the centre in cells: 0 on the centre, 1 next to it (odd counts)
-    if (std::abs(2 * index.x() - cells.x()) > 1 || std::abs(2 * index.y() - cells.y()) > 1) continue;
-    sum += u(2, n);
+    if (std::abs(2 * index[a] - cells[a]) > 1 || std::abs(2 * index[b] - cells[b]) > 1) continue;
+    sum += u(axis, n);
     ++count;
   }
   return sum / count;
@@ -168,20 +171,6 @@ void measure_volume(ExperimentResult& result) {
     least = std::min(least, cell_signed_volume(model, result.state.positions, c) / model.rest_cell_volume());
   }
   result.least_cell_volume_ratio = least;
-}
-
-// The x displacement at the centre of the face x = L: the mean of the face's nodes nearest to it.
-double side_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells) {
-  double sum = 0.0;
-  int count = 0;
-  for (int n = 0; n < model.num_nodes(); ++n) {
-    const Eigen::Vector3i& index = model.node_grid_index[n];
-    if (index.x() != cells.x()) continue;
-    if (std::abs(2 * index.y() - cells.y()) > 1 || std::abs(2 * index.z() - cells.z()) > 1) continue;
-    sum += u(0, n);
-    ++count;
-  }
-  return sum / count;
 }
 
 // The self-weight block's base (z = 0): bonded, or on a frictionless floor, which holds the base
@@ -271,7 +260,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
     if (experiment == Experiment::kBondedCompression) {
       measure_volume(result);
       result.platen_force = face_reaction(model, result.state, 2, cells.z(), 2);
-      result.bulge = side_centre_displacement(model, displacements(model, result.state), cells);
+      result.bulge = face_centre_displacement(model, displacements(model, result.state), cells, 0);
     }
     return result;
   }
@@ -408,7 +397,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
       break;
     }
     case Experiment::kSelfWeight: {
-      result.top_centre_uz = top_centre_displacement(model, u, cells);
+      result.top_centre_uz = face_centre_displacement(model, u, cells, 2);
       measure_volume(result);
       break;
     }

@@ -4,7 +4,8 @@
 // bonded_compression.h (15.3 kPa, nu = 0.499) squeezed by 5, 12.5 and 18.25%, `cubespring measure
 // bonded-compression`'s experiment, against the committed CalculiX NLGEOM neo-Hookean results,
 // after checking that their meshes have converged, on 8 and 16 cells a side. About 75 s (16 cells a
-// side: 3 solves of 16^3 cells at nu = 0.499): label validation.
+// side: 3 solves of 16^3 cells at nu = 0.499): label validation. The assertions are
+// expect_lattice_follows_calculix's (bonded_compression.cpp), which both sizes share.
 #include <gtest/gtest.h>
 
 #include "bonded_compression.h"
