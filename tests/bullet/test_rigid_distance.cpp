@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The way out of a flat-faced rigid shape (rigid_distance.h): through the face the tissue presses
-// on at an edge, but never through a face far beyond the nearest one.
+// on at an edge, but never through a face more than half a cell beyond the nearest one.
 #include <gtest/gtest.h>
 
 #include "rigid_distance.h"
@@ -11,9 +11,10 @@ namespace {
 
 constexpr double kCell = 0.008;
 
-ContactReach two_cells() {
+ContactReach projector_reach() {
   ContactReach reach;
   reach.thickness = 2 * kCell;  // what the contact projector gives without max_depth
+  reach.detour = 0.5 * kCell;
   return reach;
 }
 
@@ -34,7 +35,7 @@ TEST(RigidDistance, ASideWallGrazingATableLeavesThroughItsTop) {
   const btBoxShape table = table_shape();
   const Eigen::Vector3d point(-0.08, 0.05, -5e-5);
   const Eigen::Vector3d wall_normal = Eigen::Vector3d(0.763, -0.636, 0.115).normalized();
-  expect_near(penetration_push(table, table_place(), point, wall_normal, two_cells()), Eigen::Vector3d(0, 0, 5e-5));
+  expect_near(penetration_push(table, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
 }
 
 TEST(RigidDistance, AnEdgePressedIntoTheTissueLeavesThroughThePressingFace) {
@@ -45,11 +46,23 @@ TEST(RigidDistance, AnEdgePressedIntoTheTissueLeavesThroughThePressingFace) {
   const btTransform place = btTransform::getIdentity();
   const Eigen::Vector3d point(0.0095, 0.0, -0.008);
   const Eigen::Vector3d up(0, 0, 1);
-  expect_near(penetration_push(box, place, point, up, two_cells()), Eigen::Vector3d(0, 0, -0.002));
-  // the same face only while it lies within reach.thickness of the nearest one
+  expect_near(penetration_push(box, place, point, up, projector_reach()), Eigen::Vector3d(0, 0, -0.002));
+  // the same face only while it lies within reach.detour of the nearest one
   ContactReach short_reach;
-  short_reach.thickness = 0.001;
+  short_reach.detour = 0.001;
   expect_near(penetration_push(box, place, point, up, short_reach), Eigen::Vector3d(0.0005, 0, 0));
+}
+
+TEST(RigidDistance, APointUnderAFaceWhereTheSurfaceIsFoldedLeavesThroughThatFace) {
+  // a 3 cm box dropped on soft tissue has sunk into it; a node of the crumpled surface under its
+  // bottom, 0.01 mm inside, 1.5 cells from its side, has a normal that a fold turned sideways and
+  // a little down: the ray into the tissue leaves through the side, and with a detour of two
+  // cells the node was thrown out there, 12 mm in one sub-step, turning a cell inside out
+  const btBoxShape box(btVector3(0.015f, 0.015f, 0.015f));
+  const btTransform place = btTransform::getIdentity();
+  const Eigen::Vector3d point(-0.015 + 1.5 * kCell, -0.0025, -0.015 + 1e-5);
+  const Eigen::Vector3d folded = Eigen::Vector3d(1.0, 0.0, -0.2).normalized();
+  expect_near(penetration_push(box, place, point, folded, projector_reach()), Eigen::Vector3d(0, 0, -1e-5));
 }
 
 TEST(RigidDistance, ACylinderAndAHullFollowTheSameRule) {
@@ -57,13 +70,13 @@ TEST(RigidDistance, ACylinderAndAHullFollowTheSameRule) {
   const Eigen::Vector3d point(-0.08, 0.05, -5e-5);
   const Eigen::Vector3d wall_normal = Eigen::Vector3d(0.763, -0.636, 0.115).normalized();
   const btCylinderShapeZ cylinder(btVector3(0.25f, 0.25f, 0.01f));
-  expect_near(penetration_push(cylinder, table_place(), point, wall_normal, two_cells()), Eigen::Vector3d(0, 0, 5e-5));
+  expect_near(penetration_push(cylinder, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
   btConvexHullShape hull;
   for (int corner = 0; corner < 8; ++corner) {
     hull.addPoint(btVector3(corner & 1 ? 0.25f : -0.25f, corner & 2 ? 0.25f : -0.25f, corner & 4 ? 0.01f : -0.01f));
   }
   hull.setMargin(0);
-  expect_near(penetration_push(hull, table_place(), point, wall_normal, two_cells()), Eigen::Vector3d(0, 0, 5e-5));
+  expect_near(penetration_push(hull, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
 }
 
 }  // namespace

@@ -43,9 +43,10 @@ struct Exit {
 // inward, leaves the shape (least room / cos of the angle between the face normal and -normal).
 // The move stays perpendicular to that face. Without a usable normal, the shortest way out.
 // Only faces at most `max_detour` [m] farther than the nearest are taken: an edge pressed into
-// the tissue has both its faces near, while a face farther away than a contact reaches is no edge
-// this point is at (a tissue's side wall grazing a table's top, its normal tilted up, would be
-// thrown through the far side of the table: a liver on the demo's table blew up so).
+// the tissue has both its faces near, while a farther face is no edge this point is at, and the
+// normal that names it may be a fold's (a tissue's side wall grazing a table's top, its normal
+// tilted up, was thrown through the far side of the table; a node under a dropped box's bottom,
+// the surface crumpled around it, was thrown out through the box's side, two cells away).
 Eigen::Vector3d push_through(const std::vector<Exit>& exits, const Eigen::Vector3d& surface_normal, double max_detour) {
   const Exit* shortest = &exits.front();
   for (const Exit& exit : exits) {
@@ -158,7 +159,7 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       break;
     case BOX_SHAPE_PROXYTYPE:
       push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()).array() + offset, p, n,
-                      reach.thickness);
+                      reach.detour);
       break;
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto& capsule = static_cast<const btCapsuleShape&>(convex);
@@ -171,11 +172,11 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
       const int axis = cylinder.getUpAxis();
       const Eigen::Vector3d half = to_eigen(cylinder.getHalfExtentsWithMargin());
       push = cylinder_push(static_cast<double>(cylinder.getRadius()) + offset, half[axis] + offset, axis, p, n,
-                           reach.thickness);
+                           reach.detour);
       break;
     }
     default:  // convex hulls, cones, multi-spheres, scaled and user shapes
-      push = hull_push(convex, p, n, offset, reach.thickness);
+      push = hull_push(convex, p, n, offset, reach.detour);
       break;
   }
   if (!push) return std::nullopt;

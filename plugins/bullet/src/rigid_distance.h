@@ -16,9 +16,11 @@ struct ContactReach {
   /// The surface is taken this far outside the shape: a skin that keeps the tissue off it.
   double offset = 0.0;
   /// One-sided surfaces (triangle meshes, and surface triangles in face_penetration): how deep
-  /// behind them a point is still taken as inside and pushed out. Flat-faced shapes: how much
-  /// farther than its nearest face the face the tissue presses on may be.
+  /// behind them a point is still taken as inside and pushed out.
   double thickness = 0.0;
+  /// Flat-faced shapes: how much farther than its nearest face the face the tissue presses on
+  /// may be (0: always the nearest face).
+  double detour = 0.0;
 };
 
 /// The move [m] from `point` to the nearest point of the shape's surface, grown by reach.offset,
@@ -26,7 +28,7 @@ struct ContactReach {
 /// shape. For flat-faced shapes (boxes,
 /// cylinders, hulls) the face is the one the tissue presses on, found by the tissue's outward
 /// unit normal `surface_normal` at the point (zero: unknown, then the nearest face); the move is
-/// the shortest out through that face, if it is at most reach.thickness farther than the nearest
+/// the shortest out through that face, if it is at most reach.detour farther than the nearest
 /// face (else the nearest: docs/bullet-plugin.md, section 2.2). Convex shapes,
 /// compounds of them, static planes and concave triangle meshes (one-sided: inside means behind
 /// the nearest triangle, less than reach.thickness deep). Spheres, boxes, capsules, cylinders and
