@@ -19,6 +19,27 @@
 namespace cubespring {
 namespace {
 
+// The block on the ground, and the box above its centre, its bottom 5 mm + extra_height over it.
+bullet::SoftBody* add_tissue_block(test::BulletScene& scene) {
+  Material tissue;
+  tissue.young_modulus = 5e3;
+  tissue.poisson_ratio = 0.45;
+  tissue.density = 1060;
+  tissue.mass_damping = 40;
+  bullet::SoftBodySettings settings = test::block({20, 20, 10}, 0.005, tissue);
+  settings.lattice.model = CellModel::kExactBending;
+  settings.contact.friction = 0.3;
+  scene.add_floor();
+  return scene.add_soft(settings);
+}
+
+constexpr double kHalf = 0.015;  // the box's half side [m]
+
+btRigidBody* drop_box(test::BulletScene& scene, double mass, double extra_height = 0.0) {
+  return scene.add_rigid(new btBoxShape(btVector3(btScalar(kHalf), btScalar(kHalf), btScalar(kHalf))), mass,
+                         test::at(0, 0, 0.05 + kHalf + 0.005 + extra_height));
+}
+
 struct Drop {
   double mass;  // [kg]
   double step;  // Bullet's [s]
@@ -28,21 +49,11 @@ class InstrumentOnTissue : public ::testing::TestWithParam<Drop> {};
 
 TEST_P(InstrumentOnTissue, ComesToRestCarriedByTheTissue) {
   const double mass = GetParam().mass;
-  Material tissue;
-  tissue.young_modulus = 5e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060;
-  tissue.mass_damping = 40;
-  bullet::SoftBodySettings settings = test::block({20, 20, 10}, 0.005, tissue);
-  settings.lattice.model = CellModel::kExactBending;
-  settings.contact.friction = getenv("MU") ? atof(getenv("MU")) : 0.3;
   test::BulletScene scene;
-  scene.add_floor();
-  bullet::SoftBody* soft = scene.add_soft(settings);
+  bullet::SoftBody* soft = add_tissue_block(scene);
   ASSERT_NE(soft, nullptr);
-  const double half = 0.015;
-  btRigidBody* box = scene.add_rigid(new btBoxShape(btVector3(btScalar(half), btScalar(half), btScalar(half))), mass,
-                                     test::at(0, 0, 0.05 + half + 0.005 + (getenv("EPS") ? atof(getenv("EPS")) : 0.0)));
+  const double half = kHalf;
+  btRigidBody* box = drop_box(scene, mass);
 
   scene.run(2.5, GetParam().step);
   ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
@@ -88,21 +99,10 @@ struct OffsetDrop {
 class TippingInstrument : public ::testing::TestWithParam<OffsetDrop> {};
 
 TEST_P(TippingInstrument, NeverTurnsACellInsideOut) {
-  Material tissue;
-  tissue.young_modulus = 5e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060;
-  tissue.mass_damping = 40;
-  bullet::SoftBodySettings settings = test::block({20, 20, 10}, 0.005, tissue);
-  settings.lattice.model = CellModel::kExactBending;
-  settings.contact.friction = 0.3;
   test::BulletScene scene;
-  scene.add_floor();
-  bullet::SoftBody* soft = scene.add_soft(settings);
+  bullet::SoftBody* soft = add_tissue_block(scene);
   ASSERT_NE(soft, nullptr);
-  const double half = 0.015;
-  scene.add_rigid(new btBoxShape(btVector3(btScalar(half), btScalar(half), btScalar(half))), 0.2,
-                  test::at(0, 0, 0.05 + half + 0.005 + GetParam().extra_height));
+  drop_box(scene, 0.2, GetParam().extra_height);
   const double step = GetParam().step;
   double least = 1.0;
   for (int i = 0; i < static_cast<int>(1.2 / step); ++i) {
