@@ -14,6 +14,13 @@
 namespace cubespring::app {
 namespace {
 
+// A number as a message shows it (6 significant digits).
+std::string text(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 namespace fs = std::filesystem;
 
 constexpr double kPi = 3.14159265358979323846;
@@ -163,6 +170,16 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
     tool.capsule = spec;
   }
   if (Status s = fields.positive("scale", tool.scale); !s) return s;
+  // a capsule of 1e308 m read fine and gave every torque as NaN
+  constexpr double kMaxToolSize = 100.0;  // [m]
+  if (tool.capsule && !(tool.scale * tool.capsule->length <= kMaxToolSize)) {
+    Result<JsonFields> capsule = fields.object("capsule");
+    const std::string size = text(tool.scale * tool.capsule->length);
+    return capsule ? capsule->error("length", "times the scale is " + size + " m, more than a tool's " +
+                                                  text(kMaxToolSize) + " m")
+                   : fields.error("scale", "makes the capsule " + size + " m long, more than a tool's " +
+                                               text(kMaxToolSize) + " m");
+  }
   if (fields.has("keyframes")) {
     Result<std::vector<JsonFields>> keyframes = fields.objects("keyframes");
     if (!keyframes) return keyframes.status();
@@ -248,11 +265,6 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
 // (it would give one frame of step 0 repeated, or overflow the counts).
 Status check_counts(const JsonFields& fields, const Scene& scene) {
   constexpr double kMaxSteps = 1e9, kMaxFrames = 1e6;
-  const auto text = [](double value) {
-    std::ostringstream out;
-    out << value;
-    return out.str();
-  };
   // a count that a defaulted time_step or frame_rate makes too large is the duration's fault
   const bool step_given = fields.has("time_step"), rate_given = fields.has("frame_rate");
   const std::string step = text(scene.time_step) + " s", rate = text(scene.frame_rate) + " frames/s";
@@ -315,6 +327,13 @@ Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& 
     }
   }
   if (Status s = fields.vector3("gravity", scene.gravity); !s) return s;
+  // 1e308 read fine and stopped the organ with the API's name for it, loads.gravity
+  constexpr double kMaxGravity = 1e3;  // [m/s^2], a hundred g
+  if (!(scene.gravity.norm() <= kMaxGravity)) {
+    return fields.error("gravity", "of (" + text(scene.gravity.x()) + ", " + text(scene.gravity.y()) + ", " +
+                                       text(scene.gravity.z()) + ") m/s^2 is stronger than " + text(kMaxGravity) +
+                                       " m/s^2");
+  }
   std::string integrator = "symplectic-euler";
   if (Status s = fields.string("integrator", integrator); !s) return s;
   if (integrator == "symplectic-euler") {

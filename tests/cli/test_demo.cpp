@@ -574,6 +574,12 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
       {"{\"render\": {\"lights\": [{\"direction\": [0, 0, -1], \"colour\": [1, -1, 1]}]}}",
        "\"colour\" in \"render.lights[0]\" must have no negative channel"},
       {"{\"organ\": {\"contact_offset\": -0.001}}", "\"contact_offset\" in \"organ\" must be >= 0, got -0.001"},
+      // numbers too large to simulate: every torque came out NaN, or the organ stopped naming loads.gravity
+      {"{\"tools\": [{\"capsule\": {\"radius\": 0.0025, \"length\": 1e308}}]}",
+       "\"length\" in \"tools[0].capsule\" times the scale is 1e+308 m, more than a tool's 100 m"},
+      {"{\"tools\": [{\"capsule\": {\"radius\": 0.0025, \"length\": 0.2}, \"scale\": 1e300}]}",
+       "\"length\" in \"tools[0].capsule\" times the scale is 2e+299 m"},
+      {"{\"gravity\": [0, 0, -1e308]}", "\"gravity\" of (0, 0, -1e+308) m/s^2 is stronger than 1000 m/s^2"},
       {"{\"duration\": 1,\n \"duration\": 2}", "scene.json:2: duplicate key \"duration\""},
       {"{\"duration\": 1,\n}", "scene.json:2: JSON syntax error"},
   };
