@@ -33,6 +33,15 @@ Status file_error(const std::string& path, const std::string& problem) {
   return Status::error(path + ": " + problem);
 }
 
+// assimp's own message, cut short: its ASCII STL reader quotes the whole rest of the file after a
+// bad number (a 700 kB message for one bad digit)
+std::string reader_message(const char* message) {
+  constexpr std::size_t kShown = 200;
+  const std::string text(message);
+  if (text.size() <= kShown + 40) return text;
+  return text.substr(0, kShown) + "... (" + std::to_string(text.size() - kShown) + " more characters of assimp's message)";
+}
+
 // assimp reports a missing file only as "Unable to open file"; checking first gives one clear
 // message for missing files, directories and files without read permission.
 Status check_readable(const std::string& path) {
@@ -229,7 +238,7 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   // with a message that does not say so, and the triangle count below does.
   const aiScene* scene = importer.ReadFile(path, 0);
   if (scene == nullptr) {
-    return file_error(path, std::string("assimp cannot read it: ") + importer.GetErrorString());
+    return file_error(path, "assimp cannot read it: " + reader_message(importer.GetErrorString()));
   }
   if (count_primitives(*scene).polygons == 0) return no_triangles_error(path, *scene);
   // Validation first (assimp runs it before the other steps): it catches faces that refer to
@@ -238,7 +247,7 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
                                        aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
     return file_error(path,
-                      std::string("assimp rejects its content: ") + importer.GetErrorString());
+                      "assimp rejects its content: " + reader_message(importer.GetErrorString()));
   }
 
   MeshBuilder built;

@@ -428,6 +428,20 @@ TEST_F(LoadMesh, GarbageIsReported) {
   }
 }
 
+// assimp's ASCII STL reader quotes the rest of the file after a bad number: one bad digit in a
+// 5,000-facet file gave a 700 kB message
+TEST_F(LoadMesh, AReaderMessageQuotingTheFileIsCutShort) {
+  std::string stl = "solid bad\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 x.5\n  vertex 0 1 0\n"
+                    " endloop\nendfacet\n";
+  for (int i = 0; i < 5000; ++i) stl += "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
+  stl += "endsolid bad\n";
+  const std::string path = write("bad_number.stl", stl);
+  const Result<TriangleMesh> mesh = load_mesh(path);
+  expect_error(mesh, path, "x.5");
+  EXPECT_LT(mesh.message().size(), 600u) << mesh.message().substr(0, 600);
+  EXPECT_NE(mesh.message().find("more characters of assimp's message"), std::string::npos);
+}
+
 TEST_F(LoadMesh, UnknownExtensionIsReadByContentOrReported) {
   // assimp recognises some formats by their content whatever the extension (PLY by its header)
   const Result<TriangleMesh> ply = load_mesh(write("tet.xyz123", kTetrahedronPly));
