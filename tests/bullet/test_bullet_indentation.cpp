@@ -1,11 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // Indentation of a block by a rigid sphere against Hertz's law, F = 4/3 E / (1 - nu^2) R^1/2 d^3/2,
-// corrected for a layer of finite thickness t bonded to its base (Dimitriadis, Horkay, Maresca,
-// Kachar, Chadwick, Biophys. J. 82, 2002: F = F_Hertz (1 - 2 a0/pi chi + 4 a0^2/pi^2 chi^2
-// - 8/pi^3 (a0^3 + 4 pi^2/15 b0) chi^3 - 16 a0/pi^4 (a0^3 + 3 pi^2/5 b0) chi^4), chi = sqrt(R d)/t;
-// at nu = 0.5 its coefficients are 1.133, 1.283, 0.769, 0.0975). Here t = 2R: the correction is
-// 19-24% at 0.13-0.2 R. (slow: label validation).
+// corrected for a layer of finite thickness t bonded to its base (Dimitriadis et al. 2002,
+// validation/bonded_layer.h). Here t = 2R: the correction is 19-24% at 0.13-0.2 R. (slow: label
+// validation).
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -13,19 +11,12 @@
 #include <gtest/gtest.h>
 
 #include "bullet_scene.h"
+#include "validation/bonded_layer.h"
 
 namespace cubespring {
 namespace {
 
-// The bonded layer's factor on Hertz's force at chi = sqrt(R d) / t.
-double bonded_layer_factor(double chi, double nu) {
-  const double pi = 3.14159265358979323846;
-  const double a0 = -(1.2876 - 1.4678 * nu + 1.3442 * nu * nu) / (1.0 - nu);
-  const double b0 = (0.6387 - 1.0277 * nu + 1.5164 * nu * nu) / (1.0 - nu);
-  return 1.0 - 2.0 * a0 / pi * chi + 4.0 * a0 * a0 / (pi * pi) * chi * chi -
-         8.0 / (pi * pi * pi) * (a0 * a0 * a0 + 4.0 * pi * pi / 15.0 * b0) * chi * chi * chi -
-         16.0 * a0 / (pi * pi * pi * pi) * (a0 * a0 * a0 + 3.0 * pi * pi / 5.0 * b0) * chi * chi * chi * chi;
-}
+using validation::bonded_layer_factor;
 
 TEST(BulletIndentation, LayerFactorHasThePublishedCoefficientsAtHalf) {
   // F / F_Hertz = 1 + 1.133 chi + 1.283 chi^2 + 0.769 chi^3 + 0.0975 chi^4 at nu = 0.5
@@ -58,7 +49,6 @@ TEST(BulletIndentation, SphereForceFollowsHertzOnABondedLayerWithinTenPercent) {
   const double step = 1.0 / 600.0;
   const double press_time = 1.2;
   const double deepest = 0.2 * radius;
-  const double modulus = 4.0 / 3.0 * material.young_modulus / (1.0 - 0.09);
   double previous = 0.0;
   std::vector<std::pair<double, double>> checked;
   const int steps = static_cast<int>(press_time / step);
@@ -72,8 +62,8 @@ TEST(BulletIndentation, SphereForceFollowsHertzOnABondedLayerWithinTenPercent) {
       // rises monotonically (sampled), and matches Hertz past the first cell of depth's worth
       EXPECT_GT(force, previous) << "at depth " << depth;
       previous = force;
-      const double hertz = modulus * std::sqrt(radius) * std::pow(depth, 1.5) *
-                           bonded_layer_factor(std::sqrt(radius * depth) / top, material.poisson_ratio);
+      const double hertz =
+          validation::hertz_on_bonded_layer(material.young_modulus, material.poisson_ratio, radius, depth, top);
       std::printf("depth %.3f R: force %.5f N, Hertz on the layer %.5f N, ratio %.3f\n", depth / radius, force, hertz,
                   force / hertz);
       if (depth >= 0.1 * radius) checked.emplace_back(force, hertz);
