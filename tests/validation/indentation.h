@@ -5,7 +5,9 @@
 // of a 10 x 10 x 5 cm block of 5 kPa, nu = 0.45, its base bonded; CalculiX NLGEOM with the
 // compressible neo-Hookean law cubespring's cells follow, on a quarter of the block (the model's
 // choices are in indentation.cpp). The results are committed (tests/data/calculix/indentation.csv);
-// test_indentation_reference (label `reference`, not in CI) re-solves them.
+// test_indentation_reference (label `reference`, not in CI) re-solves them and
+// tests/bullet/test_bullet_indentation_fem.cpp (label validation) compares the lattice with them;
+// the assertions are those tests' (the reader here reports an unreadable line with ADD_FAILURE).
 #pragma once
 
 #include <array>

@@ -26,6 +26,15 @@ constexpr double kFaceContactDepthCells = 0.5;
 // sub-step), which turned a cell inside out.
 constexpr double kPressedFaceDetourCells = 0.5;
 
+// How deep behind a one-sided surface a point still counts as inside, and how far beyond the
+// nearest face the pressed one may be, for a body of cells `cell` [m] across (rigid_distance.h).
+ContactReach reach_for(const ContactSettings& settings, double cell) {
+  ContactReach reach;
+  reach.thickness = settings.max_depth > 0.0 ? settings.max_depth : 2.0 * cell;
+  reach.detour = kPressedFaceDetourCells * cell;
+  return reach;
+}
+
 // How far a round tool's contact points may stay inside it after a sub-step [of its radius].
 constexpr double kRoundToolTolerance = 1e-4;
 
@@ -49,10 +58,8 @@ constexpr double kSweepTolerance = 1e-4;
 
 void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   const ContactSettings& settings = body_.contact_;
-  ContactReach reach;
+  ContactReach reach = reach_for(settings, body_.model_.cell_size.maxCoeff());
   reach.offset = settings.offset;
-  reach.thickness = settings.max_depth > 0.0 ? settings.max_depth : 2.0 * body_.model_.cell_size.maxCoeff();
-  reach.detour = kPressedFaceDetourCells * body_.model_.cell_size.maxCoeff();
   std::vector<char> touched;
   for (auto& [object, last] : last_impulses_) last.seen = false;
   for (auto& [object, last] : last_cores_) last.seen = false;
@@ -204,9 +211,7 @@ double ContactProjector::penetration(const RigidTrack& track) const {
     }
     return deepest;
   }
-  ContactReach reach;
-  reach.thickness = body.contact_.max_depth > 0.0 ? body.contact_.max_depth : 2.0 * cell;
-  reach.detour = kPressedFaceDetourCells * cell;
+  const ContactReach reach = reach_for(body.contact_, cell);
   btVector3 low;
   btVector3 high;
   shape.getAabb(track.transform, low, high);
