@@ -3,14 +3,15 @@
 #include "contact_projector.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <optional>
 
 #include "contact_surface.h"
 #include "conversions.h"
-#include "cubespring/embedding.h"
 #include "rigid_distance.h"
 #include "round_tool_contact.h"
+#include "surface_topology.h"
 
 namespace cubespring::bullet {
 namespace {
@@ -54,7 +55,75 @@ constexpr double kBelievedEntry = 0.5;
 constexpr int kMaxSweeps = 4;
 constexpr double kSweepTolerance = 1e-4;
 
+// How far around the rigid bodies the window reaches beyond where contacts look [cells]: a
+// choice holds until nodes or bodies have moved about this far, which a resting organ or a probe
+// dragged at a few cm/s takes hundreds of sub-steps to do.
+constexpr double kWindowMarginCells = 0.5;
+
+// The most a contact-surface vertex moves per unit of node motion: the sum of its weights'
+// magnitudes (1 where all are >= 0; more for a vertex extrapolated beyond its cell).
+double largest_spread(const std::vector<int>& offset, const std::vector<double>& weight) {
+  double spread = 1.0;
+  for (std::size_t v = 0; v + 1 < offset.size(); ++v) {
+    double sum = 0.0;
+    for (int e = offset[v]; e < offset[v + 1]; ++e) sum += std::abs(weight[static_cast<std::size_t>(e)]);
+    spread = std::max(spread, sum);
+  }
+  return spread;
+}
+
 }  // namespace
+
+ContactProjector::ContactProjector(SoftBody& body)
+    : body_(body),
+      window_(kWindowMarginCells * body.model_.cell_size.maxCoeff(),
+              largest_spread(body.surface_offset_, body.surface_weight_)) {}
+
+void ContactProjector::refresh_surface(const std::vector<RigidTrack>& tracks) {
+  const std::vector<ContactBox> boxes = contact_boxes(tracks);
+  window_.note_moved(body_.state_.positions);
+  if (!window_.holds(boxes)) {
+    choose_window(boxes);
+    return;
+  }
+  for (const int v : window_.vertices()) body_.refresh_vertex(v);
+}
+
+std::vector<ContactBox> ContactProjector::contact_boxes(const std::vector<RigidTrack>& tracks) const {
+  const double cell = body_.model_.cell_size.maxCoeff();
+  ContactReach reach = reach_for(body_.contact_, cell);
+  reach.offset = body_.contact_.offset;
+  std::vector<ContactBox> boxes;
+  for (const RigidTrack& track : tracks) {
+    const btCollisionShape& shape = *track.object->getCollisionShape();
+    btVector3 low;
+    btVector3 high;
+    shape.getAabb(track.transform, low, high);
+    // a round tool's triangles are looked for a cell beyond its radius (which its box holds); other
+    // shapes' vertices as far as penetration_push() finds them, and the faces a tool reaches
+    // through half a cell
+    double beyond = reach.offset + cell;
+    if (!round_core(shape, track.transform)) {
+      beyond = push_reach_beyond_bounds(shape, reach);
+      if (body_.contact_.face_contacts) beyond = std::max(beyond, reach.offset + kFaceContactDepthCells * cell);
+    }
+    boxes.push_back({track.object, Eigen::AlignedBox3d(to_eigen(low), to_eigen(high)), beyond});
+  }
+  return boxes;
+}
+
+void ContactProjector::choose_window(const std::vector<ContactBox>& boxes) {
+  body_.update_surface();
+  window_.choose(body_.state_.positions, body_.surface_positions_, body_.surface_triangles_, *body_.surface_topology_,
+                 boxes);
+}
+
+void ContactProjector::refresh_moved() {
+  window_.note_moved(body_.state_.positions, body_.moved_nodes_);
+  body_.update_moved_surface();
+  // the boxes have not moved within a sub-step's contacts
+  if (!window_.holds(window_.boxes())) choose_window(window_.boxes());
+}
 
 void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   const ContactSettings& settings = body_.contact_;
@@ -64,17 +133,18 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   for (auto& [object, last] : last_impulses_) last.seen = false;
   for (auto& [object, last] : last_cores_) last.seen = false;
   for (RigidTrack& track : tracks) {
-    // the tissue's outward normals, which tell a rigid edge's faces apart; once per track, when
-    // a vertex is near it
-    Eigen::Matrix3Xd normals;
     const btCollisionShape& shape = *track.object->getCollisionShape();
     const bool uses_normals = push_uses_surface_normal(shape);
     btVector3 low;
     btVector3 high;
     shape.getAabb(track.transform, low, high);
-    // a flat triangle mesh has a flat box: reach as deep as a vertex may be behind it
-    const Eigen::Array3d lower = to_eigen(low).array() - (reach.thickness + reach.offset);
-    const Eigen::Array3d upper = to_eigen(high).array() + (reach.thickness + reach.offset);
+    // only surface points near the shape's box are tested: a vertex is inside a solid shape only
+    // within its box grown by the offset (a flat triangle mesh has a flat box, and a vertex may be
+    // behind it as deep as the reach's thickness); a triangle a tool reaches through is within a
+    // face contact's depth of the box
+    const double vertex_margin = push_reach_beyond_bounds(shape, reach);
+    const Eigen::Array3d vertex_lower = to_eigen(low).array() - vertex_margin;
+    const Eigen::Array3d vertex_upper = to_eigen(high).array() + vertex_margin;
     touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
     const std::vector<char> held = vertices_held_by(track.object);
     // a round tool meets the whole surface, its corners included (resolve_round_tool): pushing
@@ -85,15 +155,15 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       continue;
     }
     points_.clear();
-    for (int v = 0; v < body_.surface_positions_.cols(); ++v) {
+    for (const int v : window_.vertices()) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
-      if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
+      if ((x.array() < vertex_lower).any() || (x.array() > vertex_upper).any()) continue;
       if (!held.empty() && held[static_cast<std::size_t>(v)]) continue;
-      if (uses_normals && normals.cols() == 0) {
-        vertex_normals(body_.surface_positions_, body_.surface_triangles_, normals);
-      }
-      const std::optional<Eigen::Vector3d> push = penetration_push(
-          shape, track.transform, x, uses_normals ? Eigen::Vector3d(normals.col(v)) : Eigen::Vector3d::Zero(), reach);
+      // the tissue's outward normal tells a rigid edge's faces apart
+      const Eigen::Vector3d normal =
+          uses_normals ? vertex_normal(*body_.surface_topology_, body_.surface_positions_, body_.surface_triangles_, v)
+                       : Eigen::Vector3d::Zero();
+      const std::optional<Eigen::Vector3d> push = penetration_push(shape, track.transform, x, normal, reach);
       if (!push || push->squaredNorm() == 0.0) continue;
       add_vertex_point(v, *push);
       touched[static_cast<std::size_t>(v)] = 1;
@@ -102,17 +172,20 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     last.seen = true;
     last.by_vertex.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), Eigen::Vector3d::Zero());
     apply_points(track, true, &last);
-    body_.update_moved_surface();
+    refresh_moved();
     // a tool that reaches deeper than half a cell behind a triangle is not passing between its
     // corners: it is inside the tissue, or its shaft pierces the surface, and pushing the
     // triangle that far along its normal in one sub-step crushed the cells under it (the demo's
     // probe turned a cell inside out); the vertex contacts hold such a tool
     ContactReach face_reach = reach;
     face_reach.thickness = std::min(reach.thickness, kFaceContactDepthCells * body_.model_.cell_size.maxCoeff());
+    const Eigen::Array3d face_lower = to_eigen(low).array() - (face_reach.thickness + reach.offset);
+    const Eigen::Array3d face_upper = to_eigen(high).array() + (face_reach.thickness + reach.offset);
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
     points_.clear();
-    for (Eigen::Index t = 0; body_.contact_.face_contacts && t < body_.surface_triangles_.cols(); ++t) {
+    const std::vector<int> no_triangles;
+    for (const int t : body_.contact_.face_contacts ? window_.triangles() : no_triangles) {
       if (touched[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
           touched[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
           touched[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {
@@ -128,14 +201,14 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       const Eigen::Vector3d c = body_.surface_positions_.col(body_.surface_triangles_(2, t));
       const Eigen::Array3d tri_low = a.cwiseMin(b).cwiseMin(c).array();
       const Eigen::Array3d tri_high = a.cwiseMax(b).cwiseMax(c).array();
-      if ((tri_high < lower).any() || (tri_low > upper).any()) continue;
+      if ((tri_high < face_lower).any() || (tri_low > face_upper).any()) continue;
       const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, face_reach);
       if (!through) continue;
       const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
-      add_face_point(static_cast<int>(t), through->barycentric, -through->depth * normal);
+      add_face_point(t, through->barycentric, -through->depth * normal);
     }
     apply_points(track);
-    body_.update_moved_surface();
+    refresh_moved();
   }
   // a body that left the world (or is a round tool now) keeps nothing: another may take its address
   for (auto entry = last_impulses_.begin(); entry != last_impulses_.end();) {
@@ -150,7 +223,7 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
   const double cell = body_.model_.cell_size.maxCoeff();
   const double reach = core.radius + body_.contact_.offset;
   const std::vector<int> near = outer_triangles_near(core, body_.surface_positions_, body_.surface_triangles_,
-                                                     *body_.surface_topology_, reach + cell);
+                                                     *body_.surface_topology_, reach + cell, &window_.triangles());
   // a pass's points are found where the surface was, and it bends as they move it (a tool thinner
   // than a cell touches the surface within one cell from several sides): passes are repeated,
   // each from where the last left the surface, until every point is within the tolerance
@@ -188,7 +261,7 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
     if (points_.empty()) break;
     budget -= deepest;
     apply_points(track, pass == 0);  // a point counts as a contact once
-    body_.update_moved_surface();
+    refresh_moved();
   }
   last = {core.from, core.to, outside, true};
 }
@@ -274,11 +347,11 @@ void ContactProjector::add_vertex(ContactPoint& point, int vertex, double scale)
     const int node = body_.surface_node_[static_cast<std::size_t>(e)];
     const double weight = scale * body_.surface_weight_[static_cast<std::size_t>(e)];
     const auto first = point_nodes_.begin() + point.first_node;
-    auto same = std::find_if(first, point_nodes_.end(), [node](const auto& entry) { return entry.first == node; });
+    auto same = std::find_if(first, point_nodes_.end(), [node](const PointNode& entry) { return entry.node == node; });
     if (same != point_nodes_.end()) {
-      same->second += weight;
+      same->weight += weight;
     } else {
-      point_nodes_.emplace_back(node, weight);
+      point_nodes_.push_back({node, weight, 0.0});
     }
   }
   point.end_node = static_cast<int>(point_nodes_.size());
@@ -312,16 +385,16 @@ bool ContactProjector::movable(int node, double weight) const {
 Eigen::Vector3d ContactProjector::at_point(const ContactPoint& point, const Eigen::Matrix3Xd& field) const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int e = point.first_node; e < point.end_node; ++e) {
-    const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
-    sum += w * field.col(node);
+    const PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
+    sum += entry.weight * field.col(entry.node);
   }
   return sum;
 }
 
 void ContactProjector::move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change) const {
   for (int e = point.first_node; e < point.end_node; ++e) {
-    const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
-    if (movable(node, w)) field.col(node) += (w / body_.model_.mass[node]) * change;
+    const PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
+    if (entry.share_per_mass != 0.0) field.col(entry.node) += entry.share_per_mass * change;
   }
 }
 
@@ -330,8 +403,12 @@ void ContactProjector::prepare_points(RigidTrack& track, bool count) {
     point.inverse_mass = 0.0;
     point.share = 0.0;
     for (int e = point.first_node; e < point.end_node; ++e) {
-      const auto [node, w] = point_nodes_[static_cast<std::size_t>(e)];
+      PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
+      const int node = entry.node;
+      const double w = entry.weight;
+      entry.share_per_mass = 0.0;
       if (!movable(node, w)) continue;
+      entry.share_per_mass = w / body_.model_.mass[node];
       point.inverse_mass += w * w / body_.model_.mass[node];
       point.share += w;
       body_.mark_moved(node);

@@ -13,6 +13,7 @@
 #include "cubespring/bullet/soft_body.h"
 #include "rigid_track.h"
 #include "round_tool_contact.h"
+#include "surface_window.h"
 
 namespace cubespring::bullet {
 
@@ -23,7 +24,11 @@ namespace cubespring::bullet {
 // projected Gauss-Seidel (apply_points). The rigid track takes the opposite of what the tissue took.
 class ContactProjector {
  public:
-  explicit ContactProjector(SoftBody& body) : body_(body) {}
+  explicit ContactProjector(SoftBody& body);
+
+  /// After the lattice's step: refreshes the surface where `tracks` may touch it (the window), or
+  /// all of it when the window no longer holds, and chooses it again.
+  void refresh_surface(const std::vector<RigidTrack>& tracks);
 
   /// Every surface vertex inside a rigid shape of `tracks`, then (with face contacts) every
   /// triangle a convex tool reaches through between its corners.
@@ -93,9 +98,24 @@ class ContactProjector {
     bool seen = false;  // in the current resolve()
   };
 
+  // Where each track's contacts may reach the surface, for the window.
+  std::vector<ContactBox> contact_boxes(const std::vector<RigidTrack>& tracks) const;
+  // The whole surface refreshed and the window chosen again around `boxes`.
+  void choose_window(const std::vector<ContactBox>& boxes);
+  // After a pass moved nodes: their vertices refreshed, the window kept valid.
+  void refresh_moved();
+
   SoftBody& body_;
+  SurfaceWindow window_;
   std::vector<ContactPoint> points_;               // this pass's contacts
-  std::vector<std::pair<int, double>> point_nodes_;
+  // A node of a contact point, its weight there, and what a change at the point gives it per unit
+  // (weight / mass for a movable node, else 0), set by prepare_points().
+  struct PointNode {
+    int node = 0;
+    double weight = 0.0;
+    double share_per_mass = 0.0;  // [1/kg]
+  };
+  std::vector<PointNode> point_nodes_;
   std::map<const btCollisionObject*, LastImpulses> last_impulses_;
   std::map<const btCollisionObject*, LastCore> last_cores_;
 };

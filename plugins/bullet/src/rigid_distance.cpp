@@ -3,6 +3,7 @@
 #include "rigid_distance.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -47,14 +48,18 @@ struct Exit {
 // normal that names it may be a fold's (a tissue's side wall grazing a table's top, its normal
 // tilted up, was thrown through the far side of the table; a node under a dropped box's bottom,
 // the surface crumpled around it, was thrown out through the box's side, two cells away).
-Eigen::Vector3d push_through(const std::vector<Exit>& exits, const Eigen::Vector3d& surface_normal, double max_detour) {
-  const Exit* shortest = &exits.front();
-  for (const Exit& exit : exits) {
-    if (exit.room < shortest->room) shortest = &exit;
+// The exits are [first, last): a box's six fit on the stack (a vector's allocation, once per
+// vertex near a box and sub-step, cost more than the test).
+Eigen::Vector3d push_through(const Exit* first, const Exit* last, const Eigen::Vector3d& surface_normal,
+                             double max_detour) {
+  const Exit* shortest = first;
+  for (const Exit* exit = first; exit != last; ++exit) {
+    if (exit->room < shortest->room) shortest = exit;
   }
   const Exit* pressed = nullptr;
   double pressed_reach = std::numeric_limits<double>::infinity();
-  for (const Exit& exit : exits) {
+  for (const Exit* exit_at = first; exit_at != last; ++exit_at) {
+    const Exit& exit = *exit_at;
     const double cosine = -exit.normal.dot(surface_normal);
     if (cosine > 0.0 && exit.room <= shortest->room + max_detour && exit.room < pressed_reach * cosine) {
       pressed = &exit;
@@ -70,11 +75,14 @@ std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen
                                         const Eigen::Vector3d& surface_normal, double max_detour) {
   const Eigen::Vector3d room = half - p.cwiseAbs();
   if ((room.array() <= 0.0).any()) return std::nullopt;
-  std::vector<Exit> exits;
+  std::array<Exit, 6> exits;
   for (int axis = 0; axis < 3; ++axis) {
-    for (const double side : {-1.0, 1.0}) exits.push_back({half[axis] - side * p[axis], side * Eigen::Vector3d::Unit(axis)});
+    for (int side = 0; side < 2; ++side) {
+      const double sign = side == 0 ? -1.0 : 1.0;
+      exits[static_cast<std::size_t>(2 * axis + side)] = {half[axis] - sign * p[axis], sign * Eigen::Vector3d::Unit(axis)};
+    }
   }
-  return push_through(exits, surface_normal, max_detour);
+  return push_through(exits.data(), exits.data() + exits.size(), surface_normal, max_detour);
 }
 
 // A cylinder about an axis: out through an end or the side, whose face here is its tangent plane.
@@ -84,10 +92,11 @@ std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, 
   radial[axis] = 0.0;
   const double r = radial.norm();
   if (r >= radius || std::abs(p[axis]) >= half_height) return std::nullopt;
-  std::vector<Exit> exits{{half_height - p[axis], Eigen::Vector3d::Unit(axis)},
-                          {half_height + p[axis], -Eigen::Vector3d::Unit(axis)}};
-  if (r > 0.0) exits.push_back({radius - r, radial / r});
-  return push_through(exits, surface_normal, max_detour);
+  const std::array<Exit, 3> exits{{{half_height - p[axis], Eigen::Vector3d::Unit(axis)},
+                                   {half_height + p[axis], -Eigen::Vector3d::Unit(axis)},
+                                   {radius - r, r > 0.0 ? Eigen::Vector3d(radial / r) : Eigen::Vector3d::Zero()}}};
+  // on the axis the side has no direction
+  return push_through(exits.data(), exits.data() + (r > 0.0 ? 3 : 2), surface_normal, max_detour);
 }
 
 std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, int axis, const Eigen::Vector3d& p) {
@@ -140,7 +149,7 @@ std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen
     if (room <= 0.0) return std::nullopt;
     exits.push_back({room, plane.head<3>()});
   }
-  return push_through(exits, surface_normal, max_detour);
+  return push_through(exits.data(), exits.data() + exits.size(), surface_normal, max_detour);
 }
 
 // Each shape's own test on its dimensions grown by the offset.
@@ -228,6 +237,18 @@ std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const
 }
 
 }  // namespace
+
+double push_reach_beyond_bounds(const btCollisionShape& shape, const ContactReach& reach) {
+  if (shape.isCompound()) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    double beyond = reach.offset;
+    for (int child = 0; child < compound.getNumChildShapes(); ++child) {
+      beyond = std::max(beyond, push_reach_beyond_bounds(*compound.getChildShape(child), reach));
+    }
+    return beyond;
+  }
+  return shape.isConvex() ? reach.offset : reach.offset + reach.thickness;
+}
 
 bool push_uses_surface_normal(const btCollisionShape& shape) {
   if (shape.isCompound()) {

@@ -39,6 +39,11 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
                                                 const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
                                                 const ContactReach& reach);
 
+/// How far outside the shape's bounding box (Bullet's getAabb) penetration_push() may still find
+/// a point inside [m]: reach.offset for solid shapes, and reach.thickness more where a part is
+/// one-sided (a triangle mesh, a plane), whose inside lies behind its triangles.
+double push_reach_beyond_bounds(const btCollisionShape& shape, const ContactReach& reach);
+
 /// Whether penetration_push() looks at `surface_normal` for this shape: only flat-faced convex
 /// shapes (boxes, cylinders, hulls and the hulls of other convex shapes) and compounds with one.
 bool push_uses_surface_normal(const btCollisionShape& shape);

@@ -85,18 +85,24 @@ std::optional<RoundCore> round_core(const btCollisionShape& shape, const btTrans
 }
 
 std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix3Xd& positions,
-                                      const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology, double reach) {
+                                      const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology, double reach,
+                                      const std::vector<int>* among) {
   const Eigen::Array3d lower = core.from.cwiseMin(core.to).array() - reach;
   const Eigen::Array3d upper = core.from.cwiseMax(core.to).array() + reach;
   std::vector<int> near;
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    if (!topology.outer[static_cast<std::size_t>(t)]) continue;
+  const auto consider = [&](int t) {
+    if (!topology.outer[static_cast<std::size_t>(t)]) return;
     const Eigen::Vector3d a = positions.col(triangles(0, t)), b = positions.col(triangles(1, t)),
                           c = positions.col(triangles(2, t));
     if ((a.cwiseMax(b).cwiseMax(c).array() < lower).any() || (a.cwiseMin(b).cwiseMin(c).array() > upper).any()) {
-      continue;
+      return;
     }
-    near.push_back(static_cast<int>(t));
+    near.push_back(t);
+  };
+  if (among != nullptr) {
+    for (const int t : *among) consider(t);
+  } else {
+    for (Eigen::Index t = 0; t < triangles.cols(); ++t) consider(static_cast<int>(t));
   }
   return near;
 }

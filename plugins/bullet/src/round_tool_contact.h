@@ -38,10 +38,11 @@ struct CoreContact {
 };
 
 /// The outer triangles (those whose `topology.outer` is set) whose bounding boxes come within
-/// `reach` of the core's.
+/// `reach` of the core's, in ascending order; looked for among `among` (ascending) when given,
+/// else among all (only their positions are read).
 std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix3Xd& positions,
                                       const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                                      double reach);
+                                      double reach, const std::vector<int>* among = nullptr);
 
 /// The places where a core meets the surface, among the triangles `candidates`: when the core is
 /// outside the tissue, the nearest point of every feature (a triangle's inside, an edge, a

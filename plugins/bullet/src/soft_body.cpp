@@ -117,11 +117,13 @@ void SoftBody::index_vertices_by_node() {
 }
 
 void SoftBody::refresh_vertex(int v) {
-  surface_positions_.col(v).setZero();
+  // summed in a local (the compiler cannot keep a column of one matrix in registers while it reads
+  // another); the same sums in the same order
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
-    surface_positions_.col(v) +=
-        surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
+    sum += surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
   }
+  surface_positions_.col(v) = sum;
 }
 
 void SoftBody::update_surface() {

@@ -122,4 +122,18 @@ SurfaceTopology surface_topology(const Eigen::Matrix3Xd& rest_positions, const E
   return topology;
 }
 
+Eigen::Vector3d vertex_normal(const SurfaceTopology& topology, const Eigen::Matrix3Xd& positions,
+                              const Eigen::Matrix3Xi& triangles, int v) {
+  // the triangles in ascending order, as vertex_normals() visits them
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = topology.vertex_offset[static_cast<std::size_t>(v)]; k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+    const int t = topology.vertex_triangle[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d a = positions.col(triangles(0, t));
+    sum += (positions.col(triangles(1, t)) - a).cross(positions.col(triangles(2, t)) - a);
+  }
+  const double length = sum.norm();
+  if (length > 0.0) sum /= length;
+  return sum;
+}
+
 }  // namespace cubespring::bullet

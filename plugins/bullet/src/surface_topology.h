@@ -28,4 +28,10 @@ struct SurfaceTopology {
 /// counter-clockwise seen from outside).
 SurfaceTopology surface_topology(const Eigen::Matrix3Xd& rest_positions, const Eigen::Matrix3Xi& triangles);
 
+/// The unit outward normal at vertex `v` of the triangles over `positions`: the area-weighted sum
+/// of its triangles' normals, summed as cubespring::vertex_normals() sums them (the same bits),
+/// for one vertex; zero for a vertex of no triangle.
+Eigen::Vector3d vertex_normal(const SurfaceTopology& topology, const Eigen::Matrix3Xd& positions,
+                              const Eigen::Matrix3Xi& triangles, int v);
+
 }  // namespace cubespring::bullet

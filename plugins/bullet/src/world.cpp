@@ -262,7 +262,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     }
     if (held_anchors) report_held_anchors(body, tracks, anchor_track, velocities_before, dt);
     part = Clock::now();
-    body.update_surface();
+    projector.refresh_surface(tracks);  // where the contacts below look
     body.times_.surface += seconds_since(part);
 
     // contacts: the surface is moved out of every nearby rigid shape (its vertices; a round
@@ -288,6 +288,10 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     }
   }
   body.loads_.nodal_forces = user_forces;
+  // the whole surface, for readers between steps (the sub-steps refreshed only the contacts' part)
+  const Clock::time_point refresh = Clock::now();
+  body.update_surface();
+  body.times_.surface += seconds_since(refresh);
   if (body.last_report_.ok()) {
     // measured before the lock is taken: a haptic thread reading the wrench does not wait on it
     std::vector<double> depths;

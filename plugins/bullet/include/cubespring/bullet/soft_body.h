@@ -126,7 +126,7 @@ class SoftBody {
   /// where a scene's physics time goes (`cubespring bench-render` prints it).
   struct Times {
     double elastic = 0.0;   ///< the lattice's own step: forces, kick and drift
-    double surface = 0.0;   ///< the contact surface refreshed from the nodes after that step
+    double surface = 0.0;   ///< the contact surface refreshed from the nodes: near the rigid bodies after that step, all of it once a world step
     double contact = 0.0;   ///< contacts with rigid bodies found and resolved
     double planning = 0.0;  ///< the sub-step's length chosen from the cells' thickness
     long sub_steps = 0;

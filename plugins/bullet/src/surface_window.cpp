@@ -1,0 +1,83 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+#include "surface_window.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace cubespring::bullet {
+
+void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd& vertices,
+                           const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
+                           const std::vector<ContactBox>& boxes) {
+  std::vector<Eigen::AlignedBox3d> regions;
+  for (const ContactBox& box : boxes) {
+    const Eigen::Vector3d grow = Eigen::Vector3d::Constant(box.reach + margin_);
+    regions.emplace_back(box.box.min() - grow, box.box.max() + grow);
+  }
+  const auto near = [&](const Eigen::AlignedBox3d& bounds) {
+    return std::any_of(regions.begin(), regions.end(),
+                       [&](const Eigen::AlignedBox3d& region) { return region.intersects(bounds); });
+  };
+  std::vector<char> vertex_in(static_cast<std::size_t>(vertices.cols()), 0);
+  std::vector<char> triangle_in(static_cast<std::size_t>(triangles.cols()), 0);
+  const auto take_triangles_around = [&](int v) {
+    for (int k = topology.vertex_offset[static_cast<std::size_t>(v)]; k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+      triangle_in[static_cast<std::size_t>(topology.vertex_triangle[static_cast<std::size_t>(k)])] = 1;
+    }
+  };
+  for (Eigen::Index v = 0; v < vertices.cols(); ++v) {
+    const Eigen::Vector3d x = vertices.col(v);
+    if (!near(Eigen::AlignedBox3d(x, x))) continue;
+    vertex_in[static_cast<std::size_t>(v)] = 1;
+    take_triangles_around(static_cast<int>(v));
+  }
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    Eigen::AlignedBox3d bounds(vertices.col(triangles(0, t)));
+    bounds.extend(vertices.col(triangles(1, t))).extend(vertices.col(triangles(2, t)));
+    if (!near(bounds)) continue;
+    triangle_in[static_cast<std::size_t>(t)] = 1;
+    for (int k = 0; k < 3; ++k) take_triangles_around(triangles(k, t));
+  }
+  triangles_.clear();
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    if (!triangle_in[static_cast<std::size_t>(t)]) continue;
+    triangles_.push_back(static_cast<int>(t));
+    for (int k = 0; k < 3; ++k) vertex_in[static_cast<std::size_t>(triangles(k, t))] = 1;
+  }
+  vertices_.clear();
+  for (Eigen::Index v = 0; v < vertices.cols(); ++v) {
+    if (vertex_in[static_cast<std::size_t>(v)]) vertices_.push_back(static_cast<int>(v));
+  }
+  chosen_nodes_ = nodes;
+  boxes_ = boxes;
+  moved_ = 0.0;
+  chosen_ = true;
+}
+
+void SurfaceWindow::note_moved(const Eigen::Matrix3Xd& nodes) {
+  if (!chosen_) return;
+  moved_ = std::max(moved_, std::sqrt((nodes - chosen_nodes_).colwise().squaredNorm().maxCoeff()));
+}
+
+void SurfaceWindow::note_moved(const Eigen::Matrix3Xd& nodes, const std::vector<int>& which) {
+  if (!chosen_) return;
+  for (const int n : which) moved_ = std::max(moved_, (nodes.col(n) - chosen_nodes_.col(n)).norm());
+}
+
+bool SurfaceWindow::holds(const std::vector<ContactBox>& boxes) const {
+  if (!chosen_) return false;
+  // how far any box reaches past where its chosen one reached
+  double grown = 0.0;
+  for (const ContactBox& box : boxes) {
+    const auto then = std::find_if(boxes_.begin(), boxes_.end(),
+                                   [&](const ContactBox& chosen) { return chosen.object == box.object; });
+    if (then == boxes_.end()) return false;
+    const Eigen::Vector3d low = (then->box.min().array() - then->reach) - (box.box.min().array() - box.reach);
+    const Eigen::Vector3d high = (box.box.max().array() + box.reach) - (then->box.max().array() + then->reach);
+    grown = std::max({grown, low.maxCoeff(), high.maxCoeff()});
+  }
+  return spread_ * moved_ + grown < margin_;
+}
+
+}  // namespace cubespring::bullet

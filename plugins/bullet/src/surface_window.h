@@ -1,0 +1,66 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// The part of a soft body's contact surface near the rigid bodies it may touch: the only vertices a
+// sub-step's contacts read and test (docs/bullet-plugin.md, section 2.1). An organ resting on a
+// table and pressed by a probe touches them with a small part of its surface; refreshing and
+// testing all of it every sub-step took a quarter of the default scene's physics.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "surface_topology.h"
+
+namespace cubespring::bullet {
+
+/// Where a rigid body may meet the surface: its bounding box [m] grown by `reach` [m], the
+/// farthest beyond the box that any contact test looks.
+struct ContactBox {
+  const void* object = nullptr;  ///< which body, to match the boxes of one choice to the next
+  Eigen::AlignedBox3d box;
+  double reach = 0.0;
+};
+
+/// Chosen from fresh surface positions, the window holds while no node has moved, and no box has
+/// grown past its box then, by more than the margin in all: a vertex or a triangle outside the
+/// window then cannot have come within reach of a box. It is chosen with room around the boxes,
+/// so that a choice lasts many sub-steps; the vertices and triangles are in ascending order, so
+/// that a loop over them meets the near ones in the order a loop over all would.
+class SurfaceWindow {
+ public:
+  /// `spread`: the most a vertex moves per unit of node motion (the sum of its weights' magnitudes,
+  /// the largest over the surface: 1 where every weight is >= 0).
+  SurfaceWindow(double margin, double spread) : margin_(margin), spread_(spread) {}
+
+  /// Chooses the vertices and triangles within reach plus the margin of the boxes, the triangles
+  /// around the chosen vertices and around the corners of the chosen triangles (a vertex's normal
+  /// and a corner's pseudonormal read them), and every corner of those.
+  void choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,
+              const SurfaceTopology& topology, const std::vector<ContactBox>& boxes);
+
+  /// Counts how far the nodes have moved since the choice: all of them, or the listed ones.
+  void note_moved(const Eigen::Matrix3Xd& nodes);
+  void note_moved(const Eigen::Matrix3Xd& nodes, const std::vector<int>& which);
+
+  /// Whether the choice still holds for these boxes (the same bodies, in any order).
+  bool holds(const std::vector<ContactBox>& boxes) const;
+
+  bool chosen() const { return chosen_; }
+  const std::vector<int>& vertices() const { return vertices_; }
+  const std::vector<int>& triangles() const { return triangles_; }
+  /// The boxes of the current choice.
+  const std::vector<ContactBox>& boxes() const { return boxes_; }
+
+ private:
+  double margin_;
+  double spread_;
+  bool chosen_ = false;
+  Eigen::Matrix3Xd chosen_nodes_;
+  std::vector<ContactBox> boxes_;
+  double moved_ = 0.0;  // the farthest any node has moved since the choice [m]
+  std::vector<int> vertices_;
+  std::vector<int> triangles_;
+};
+
+}  // namespace cubespring::bullet
