@@ -342,13 +342,17 @@ ContactProjector::ContactPoint& ContactProjector::new_point(const Eigen::Vector3
 }
 
 void ContactProjector::add_vertex(ContactPoint& point, int vertex, double scale) {
+  // a vertex's own entries name distinct nodes (ContactSurface): only the point's earlier
+  // vertices' entries may share one
+  const std::size_t earlier = point_nodes_.size();
   for (int e = body_.surface_offset_[static_cast<std::size_t>(vertex)];
        e < body_.surface_offset_[static_cast<std::size_t>(vertex) + 1]; ++e) {
     const int node = body_.surface_node_[static_cast<std::size_t>(e)];
     const double weight = scale * body_.surface_weight_[static_cast<std::size_t>(e)];
     const auto first = point_nodes_.begin() + point.first_node;
-    auto same = std::find_if(first, point_nodes_.end(), [node](const PointNode& entry) { return entry.node == node; });
-    if (same != point_nodes_.end()) {
+    const auto end = point_nodes_.begin() + static_cast<std::ptrdiff_t>(earlier);
+    auto same = std::find_if(first, end, [node](const PointNode& entry) { return entry.node == node; });
+    if (same != end) {
       same->weight += weight;
     } else {
       point_nodes_.push_back({node, weight, 0.0});

@@ -14,7 +14,7 @@ namespace cubespring::bullet {
 
 struct ContactSurface {
   std::vector<int> offset;  ///< vertex v: entries offset[v] .. offset[v+1]-1
-  std::vector<int> node;
+  std::vector<int> node;    ///< distinct within a vertex's entries
   std::vector<double> weight;
   Eigen::Matrix3Xi triangles;  ///< counter-clockwise seen from outside
 };
