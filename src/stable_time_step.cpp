@@ -85,6 +85,7 @@ double max_frequency(const Model& model, FrequencyBound bound) {
 double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positions) {
   if (model.cell_law == CellLaw::kSprings) return 1.0;
   constexpr double kLeast = 0.2;
+  constexpr double kWideEnough = 2.0;  // a face up to twice its rest area: as at rest
   double thinnest = 1.0;
   for (int c = 0; c < model.num_cells(); ++c) {
     const CellFrame frame = cell_frame(model, positions, c);
@@ -92,7 +93,10 @@ double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positi
     for (int axis = 0; axis < 3; ++axis) {
       const double face = frame.edge[(axis + 1) % 3].cross(frame.edge[(axis + 2) % 3]).norm();
       const double thickness = face > 0.0 ? volume / face / model.cell_size[axis] : 0.0;  // of the rest size
-      thinnest = std::min(thinnest, std::max(thickness, 0.0));
+      // stretched flat, it is stiffer across than its thickness says (stable_time_step.h)
+      const double rest_face = model.cell_size[(axis + 1) % 3] * model.cell_size[(axis + 2) % 3];
+      const double widened = std::max(face / (kWideEnough * rest_face), 1.0);
+      thinnest = std::min(thinnest, std::max(thickness, 0.0) / std::sqrt(widened));
     }
   }
   return std::clamp(thinnest / kThickEnough, kLeast, 1.0);

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 // The explicit stability limit against the body's spectrum (dense eigenvalues of M^-1/2 K M^-1/2)
 // and against what symplectic Euler does just below and just above it.
+#include <cmath>
 #include <random>
 #include <string>
 
@@ -139,6 +140,14 @@ TEST(CompressedStepFactor, FollowsTheThinnestCellAndOnlyTheNeoHookeanLaw) {
   }
   EXPECT_EQ(compressed_step_factor(model, mild), 1.0);
   EXPECT_EQ(compressed_step_factor(model, inverted), 0.2);
+
+  // stretched flat: 2 times as wide each way and 0.4 as thick; across z the thickness is 0.4 and
+  // the face 4 times its rest area, so 0.4 / 0.5 / sqrt(4 / 2) of the rest step (a cell's
+  // stiffness across grows with its face); a face at most twice its rest area counts as at rest
+  const Eigen::Matrix3d flat = Eigen::Vector3d(2.0, 2.0, 0.4).asDiagonal();
+  EXPECT_NEAR(compressed_step_factor(model, flat * model.rest_positions), 0.4 / kThickEnough / std::sqrt(2.0), 1e-12);
+  const Eigen::Matrix3d wide = Eigen::Vector3d(1.4, 1.4, 0.4).asDiagonal();
+  EXPECT_NEAR(compressed_step_factor(model, wide * model.rest_positions), 0.4 / kThickEnough, 1e-12);
 
   // the springs law's springs are linear in length: no thinner step
   desc.law = CellLaw::kSprings;
