@@ -162,8 +162,9 @@ TEST(RoundToolContact, ACoreInsideOrOutsideIsAtItsSignedDistance) {
 // Where the surface folds around a thin tool its walls cross, and the nearest point's
 // pseudonormal can put the core inside the tissue when it is not. A core that was outside a
 // moment ago cannot be far inside now: core_contacts takes an inside verdict deeper than the
-// depth it is told to believe as a fold's, and holds the core with the points that face it.
-TEST(RoundToolContact, AnInsideVerdictDeeperThanBelievedIsAFoldAndThePointsFacingTheCoreHoldIt) {
+// depth it is told to believe as a fold's. The core stays outside, and every surface point within
+// reach, the fold's seen from behind too, leaves the tool away from the core.
+TEST(RoundToolContact, AnInsideVerdictDeeperThanBelievedIsAFoldWhoseSurfaceLeavesTheToolAwayFromTheCore) {
   Eigen::Matrix3Xd x(3, 0);
   Eigen::Matrix3Xi tri(3, 0);
   add_octahedron(1.0, Eigen::Vector3d::Zero(), x, tri);  // its (+,+,+) face is x + y + z = 1
@@ -178,6 +179,7 @@ TEST(RoundToolContact, AnInsideVerdictDeeperThanBelievedIsAFoldAndThePointsFacin
   const Eigen::Vector3d centre = Eigen::Vector3d::Constant(0.3);
   const double behind = 0.1 / std::sqrt(3.0);
   const RoundCore sphere{centre, centre, 0.1};
+  const Eigen::Vector3d toward_second = Eigen::Vector3d::Ones().normalized();
 
   const std::vector<CoreContact> believed = core_contacts(sphere, x, tri, topology, all, 0.1);
   ASSERT_EQ(believed.size(), 1u);
@@ -185,13 +187,16 @@ TEST(RoundToolContact, AnInsideVerdictDeeperThanBelievedIsAFoldAndThePointsFacin
   EXPECT_EQ(core_contacts(sphere, x, tri, topology, all, 0.1, 1.01 * behind).size(), 1u);
 
   const std::vector<CoreContact> fold = core_contacts(sphere, x, tri, topology, all, 0.1, 0.5 * behind);
-  ASSERT_FALSE(fold.empty()) << "the second part's face holds the core";
+  ASSERT_EQ(fold.size(), 2u) << "the fold's point and the second part's face";
+  // both lie beyond the core along (1, 1, 1): each is pushed that way, out of the tool (a
+  // contact's normal points from the surface toward the core, its push against it)
+  EXPECT_LT(fold[0].surface.triangle, 8) << "the fold's point, seen from behind";
+  EXPECT_NEAR(fold[0].signed_distance, behind, 1e-12);
+  EXPECT_GE(fold[1].surface.triangle, 8);
+  EXPECT_NEAR(fold[1].signed_distance, beyond, 1e-12);
   for (const CoreContact& contact : fold) {
-    EXPECT_GT(contact.signed_distance, 0.0);
-    EXPECT_GE(contact.surface.triangle, 8) << "only the part facing the core";
+    EXPECT_NEAR((contact.normal + toward_second).norm(), 0.0, 1e-12);
   }
-  EXPECT_NEAR(fold[0].signed_distance, beyond, 1e-12);
-  EXPECT_NEAR((fold[0].normal + Eigen::Vector3d::Ones().normalized()).norm(), 0.0, 1e-12);
 }
 
 }  // namespace

@@ -39,13 +39,17 @@ ContactReach reach_for(const ContactSettings& settings, double cell) {
 // How far a round tool's contact points may stay inside it after a sub-step [of its radius].
 constexpr double kRoundToolTolerance = 1e-4;
 
-// How deep a round tool's core may be found inside the tissue [of its radius, beyond how far it
-// moved] when it was outside at the last pass or sub-step. A probe slipping under the surface
-// enters it gradually, from a depth of 0; a verdict a whole radius deep at once is the sign of a
-// fold (the demo's 2.5 mm probe dragged 1 cm deep through the liver at 4 mm cells: the wall ahead
-// of it, pushed to the probe's surface, was then judged to have the core behind it, was pushed a
-// radius through the probe, and the cells around turned inside out within 3 ms).
-constexpr double kBelievedEntry = 0.5;
+// How deep a round tool's core may be found inside the tissue when it was outside at the last pass
+// or sub-step, `clearance` from the nearest surface point then, and the two can have come
+// `closing` closer since (the core's motion and the surface's): a core enters the tissue through
+// its surface, its signed distance falling through 0, so no deeper than they closed beyond the
+// clearance. A deeper verdict is a fold's: where the surface cannot wrap a probe thinner than a
+// cell, its walls cross, and the nearest triangle may be one seen from behind. Believed, the
+// surface was pushed past the core, through the probe: the demo's 2.5 mm probe dragged 1 cm deep
+// through the liver at 4 mm cells turned the cells around inside out within 3 ms, and a 2.5 mm
+// probe dragged at 10 cm/s through a block of 2.7 mm cells threw nodes at 4 m/s and blew it up
+// while the bound was half the radius beyond the core's motion.
+double believed_entry(double clearance, double closing) { return std::max(0.0, closing - clearance); }
 
 // The Gauss-Seidel sweeps of a pass (apply_points): at most this many, and no more once a sweep
 // moves no point by more than this fraction of a cell (or changes no velocity by more than that
@@ -86,7 +90,9 @@ void ContactProjector::refresh_surface(const std::vector<RigidTrack>& tracks) {
     choose_window(boxes);
     return;
   }
-  for (const int v : window_.vertices()) body_.refresh_vertex(v);
+  double farthest = 0.0;
+  for (const int v : window_.vertices()) farthest = std::max(farthest, body_.refresh_vertex(v));
+  surface_travel_ += farthest;
 }
 
 std::vector<ContactBox> ContactProjector::contact_boxes(const std::vector<RigidTrack>& tracks) const {
@@ -113,14 +119,22 @@ std::vector<ContactBox> ContactProjector::contact_boxes(const std::vector<RigidT
 }
 
 void ContactProjector::choose_window(const std::vector<ContactBox>& boxes) {
+  // the odometer follows the vertices of the window that ends (the others were far from any tool)
+  std::vector<Eigen::Vector3d> before;
+  for (const int v : window_.vertices()) before.emplace_back(body_.surface_positions_.col(v));
   body_.update_surface();
+  double farthest = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    farthest = std::max(farthest, (body_.surface_positions_.col(window_.vertices()[i]) - before[i]).norm());
+  }
+  surface_travel_ += farthest;
   window_.choose(body_.state_.positions, body_.surface_positions_, body_.surface_triangles_, *body_.surface_topology_,
                  boxes);
 }
 
 void ContactProjector::refresh_moved() {
   window_.note_moved(body_.state_.positions, body_.moved_nodes_);
-  body_.update_moved_surface();
+  surface_travel_ += body_.update_moved_surface();
   // the boxes have not moved within a sub-step's contacts
   if (!window_.holds(window_.boxes())) choose_window(window_.boxes());
 }
@@ -232,16 +246,21 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
   double budget = kFaceContactDepthCells * cell;
   LastCore& last = last_cores_[track.object];
   bool outside = last.outside;  // a tool met for the first time may have been placed anywhere
+  double clearance = last.clearance;
+  double travel = last.travel;
   double moved = last.outside ? std::max((core.from - last.from).norm(), (core.to - last.to).norm()) : 0.0;
   for (int pass = 0; pass < kMaxPasses && budget > 0.0; ++pass) {
     points_.clear();
     double deepest = 0.0;
     const double believed_depth =
-        outside ? kBelievedEntry * core.radius + moved : std::numeric_limits<double>::infinity();
+        outside ? believed_entry(clearance, moved + (surface_travel_ - travel)) : std::numeric_limits<double>::infinity();
     moved = 0.0;  // the tool stands still between the passes
     const std::vector<CoreContact> contacts = core_contacts(core, body_.surface_positions_, body_.surface_triangles_,
                                                             *body_.surface_topology_, near, reach, believed_depth);
     outside = contacts.empty() || contacts.front().signed_distance >= 0.0;
+    clearance = reach + cell;  // no surface within the search
+    for (const CoreContact& contact : contacts) clearance = std::min(clearance, contact.signed_distance);
+    travel = surface_travel_;
     for (const CoreContact& contact : contacts) {
       // a point an earlier pass or sub-step left on the tool's surface, a rounding error inside,
       // is not resolved again: the result would follow the last bit of Bullet's float poses
@@ -263,7 +282,7 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
     apply_points(track, pass == 0);  // a point counts as a contact once
     refresh_moved();
   }
-  last = {core.from, core.to, outside, true};
+  last = {core.from, core.to, outside, clearance, travel, true};
 }
 
 double ContactProjector::penetration(const RigidTrack& track) const {
@@ -274,9 +293,10 @@ double ContactProjector::penetration(const RigidTrack& track) const {
     const std::vector<int> near = outer_triangles_near(*core, body.surface_positions_, body.surface_triangles_,
                                                        *body.surface_topology_, core->radius + cell);
     const auto last = last_cores_.find(track.object);
-    const double believed_depth = last != last_cores_.end() && last->second.outside
-                                      ? kBelievedEntry * core->radius
-                                      : std::numeric_limits<double>::infinity();
+    const double believed_depth =
+        last != last_cores_.end() && last->second.outside
+            ? believed_entry(last->second.clearance, surface_travel_ - last->second.travel)
+            : std::numeric_limits<double>::infinity();
     double deepest = 0.0;
     for (const CoreContact& contact : core_contacts(*core, body.surface_positions_, body.surface_triangles_,
                                                     *body.surface_topology_, near, core->radius, believed_depth)) {

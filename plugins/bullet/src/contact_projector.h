@@ -89,13 +89,16 @@ class ContactProjector {
   Eigen::Vector3d at_point(const ContactPoint& point, const Eigen::Matrix3Xd& field) const;
   void move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change) const;
 
-  // Where a round tool's core was at the end of the last sub-step, and whether it was outside the
-  // tissue then: an inside verdict deeper than it could have gone since is a fold's sign error.
+  // Where a round tool's core was at the end of the last sub-step, whether it was outside the
+  // tissue then, and how far the surface was from it when last measured: an inside verdict deeper
+  // than the core and the surface can have come together since is a fold's sign error.
   struct LastCore {
     Eigen::Vector3d from{0, 0, 0};
     Eigen::Vector3d to{0, 0, 0};
     bool outside = false;
-    bool seen = false;  // in the current resolve()
+    double clearance = 0.0;  // the nearest surface point's distance from the core then [m]
+    double travel = 0.0;     // surface_travel_ then [m]
+    bool seen = false;       // in the current resolve()
   };
 
   // Where each track's contacts may reach the surface, for the window.
@@ -107,6 +110,9 @@ class ContactProjector {
 
   SoftBody& body_;
   SurfaceWindow window_;
+  // The surface's odometer: the farthest any window vertex moved, summed over every refresh [m].
+  // No vertex near a tool has moved farther than the difference of two readings.
+  double surface_travel_ = 0.0;
   std::vector<ContactPoint> points_;               // this pass's contacts
   // A node of a contact point, its weight there, and what a change at the point gives it per unit
   // (weight / mass for a movable node, else 0), set by prepare_points().

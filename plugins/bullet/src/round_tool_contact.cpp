@@ -141,6 +141,16 @@ std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matri
   // point where it lies on the edge or corner they share
   // (an inside verdict not believed leaves the nearest point out: it is on the wrong side of a
   // fold, and the points around it that face the core hold it)
+  // a surface point seen from behind (a fold's, or the far side of a part thinner than the tool)
+  // within reach of a core outside the tissue is in the tool all the same: it leaves it away from
+  // the core
+  const auto away_from_core = [](CoreContact contact) {
+    if (contact.signed_distance < 0.0) {
+      contact.signed_distance = -contact.signed_distance;
+      contact.normal = -contact.normal;
+    }
+    return contact;
+  };
   const bool first_faces = first.signed_distance > 0.0;
   std::vector<CoreContact> contacts;
   std::vector<Eigen::Vector3d> found;
@@ -151,8 +161,8 @@ std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matri
   const double same = kSamePoint * core.radius;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if ((first_faces && i == nearest) || !(closest[i].distance < reach)) continue;
-    const CoreContact contact = contact_of(i);
-    if (contact.signed_distance <= 0.0) continue;  // the back of a part thinner than the tool
+    if (closest[i].distance == 0.0) continue;  // on the core: no way away from it
+    const CoreContact contact = away_from_core(contact_of(i));
     const Eigen::Vector3d at = surface_position(positions, triangles, contact.surface);
     if (std::any_of(found.begin(), found.end(), [&](const Eigen::Vector3d& x) { return (x - at).norm() <= same; })) {
       continue;

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #include "cubespring/bullet/soft_body.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -116,19 +117,21 @@ void SoftBody::index_vertices_by_node() {
   vertex_stale_.assign(surface_offset_.size() - 1, 0);
 }
 
-void SoftBody::refresh_vertex(int v) {
+double SoftBody::refresh_vertex(int v) {
   // summed in a local (the compiler cannot keep a column of one matrix in registers while it reads
   // another); the same sums in the same order
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
     sum += surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
   }
+  const double moved = (sum - surface_positions_.col(v)).norm();
   surface_positions_.col(v) = sum;
+  return moved;
 }
 
 void SoftBody::update_surface() {
   const int vertices = static_cast<int>(surface_offset_.size()) - 1;
-  surface_positions_.resize(3, vertices);
+  if (surface_positions_.cols() != vertices) surface_positions_.setZero(3, vertices);
   for (int v = 0; v < vertices; ++v) refresh_vertex(v);
   for (const int node : moved_nodes_) node_moved_[static_cast<std::size_t>(node)] = 0;
   moved_nodes_.clear();
@@ -140,7 +143,7 @@ void SoftBody::mark_moved(int node) {
   moved_nodes_.push_back(node);
 }
 
-void SoftBody::update_moved_surface() {
+double SoftBody::update_moved_surface() {
   // each stale vertex once (it may hang from several moved nodes)
   stale_vertices_.clear();
   for (const int node : moved_nodes_) {
@@ -153,10 +156,12 @@ void SoftBody::update_moved_surface() {
     node_moved_[static_cast<std::size_t>(node)] = 0;
   }
   moved_nodes_.clear();
+  double farthest = 0.0;
   for (const int v : stale_vertices_) {
-    refresh_vertex(v);  // the same sums as update_surface(), so the same bits
+    farthest = std::max(farthest, refresh_vertex(v));  // the same sums as update_surface(), so the same bits
     vertex_stale_[static_cast<std::size_t>(v)] = 0;
   }
+  return farthest;
 }
 
 Status SoftBody::reset(const State& state) {

@@ -148,14 +148,15 @@ class SoftBody {
   SoftBody() = default;
   /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
   void index_vertices_by_node();
-  /// Contact-surface vertex v from its nodes.
-  void refresh_vertex(int v);
+  /// Contact-surface vertex v from its nodes; returns how far it moved [m].
+  double refresh_vertex(int v);
   /// Every contact-surface vertex from the nodes (after a step moved them all).
   void update_surface();
   /// Node n was moved by a contact: its vertices are stale until update_moved_surface().
   void mark_moved(int node);
-  /// Recomputes the vertices of the nodes marked since the last update, as update_surface() does.
-  void update_moved_surface();
+  /// Recomputes the vertices of the nodes marked since the last update, as update_surface() does;
+  /// returns the farthest one of them moved [m].
+  double update_moved_surface();
 
   Model model_;
   State state_;
