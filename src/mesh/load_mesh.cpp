@@ -20,6 +20,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "ply_header.h"
+
 namespace cubespring {
 namespace {
 
@@ -229,6 +231,9 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   }
   Status readable = check_readable(path);
   if (!readable.ok()) return readable;
+  // assimp trusts a PLY file's header: checked first (ply_header.h)
+  Status ply = check_ply_header(path);
+  if (!ply.ok()) return ply;
 
   // No logger is created, so assimp stays quiet (its default logger discards everything).
   Assimp::Importer importer;

@@ -502,6 +502,59 @@ TEST_F(LoadMesh, PlyFaceIndexingAMissingVertexIsReported) {
   expect_error(load_mesh(path), path, "out of range");
 }
 
+// A binary little-endian PLY of the tetrahedron; `end_line` ends its header.
+std::string binary_tetrahedron_ply(const std::string& end_line = "end_header") {
+  std::string text = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                     "property float z\nelement face 4\nproperty list uchar int vertex_indices\n" + end_line + "\n";
+  const auto append = [&text](const auto& value) { text.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
+  const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (const auto& corner : corners) {
+    for (const float c : corner) append(c);
+  }
+  const std::int32_t faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const auto& face : faces) {
+    append(static_cast<std::uint8_t>(3));
+    for (const std::int32_t i : face) append(i);
+  }
+  return text;
+}
+
+TEST_F(LoadMesh, BinaryPlyKeepsItsTriangles) {
+  const Result<TriangleMesh> mesh = load_mesh(write("tet_binary.ply", binary_tetrahedron_ply()));
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  EXPECT_EQ(mesh->num_triangles(), 4);
+  EXPECT_DOUBLE_EQ(signed_volume(*mesh), 1.0 / 6.0);
+}
+
+// assimp 5.2 trusts a PLY header: without 'end_header' it read forever, with it damaged in a
+// binary file it crashed (SIGSEGV), with a count larger than the file it allocated gigabytes
+TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
+  struct Case {
+    const char* name;
+    std::string text;
+    const char* expected;
+  };
+  std::string huge = kTetrahedronPly;
+  huge.replace(huge.find("element vertex 4"), 16, "element vertex 4000000000");
+  std::string typo = kTetrahedronPly;
+  typo.replace(typo.find("property float y"), 16, "property flaot y");
+  const Case cases[] = {
+      {"cut.ply", "ply\nformat ascii 1.0\n", "no 'end_header' line in its first 21 bytes"},
+      {"damaged.ply", binary_tetrahedron_ply("end_heaxer"), "line 9: 'end_heaxer' is not a PLY header line"},
+      {"huge.ply", huge, "line 3: declares 4000000000 'vertex' elements"},
+      {"typo.ply", typo, "line 5: 'property flaot y': expected 'property TYPE NAME'"},
+      // assimp knows a PLY by its first line, whatever the extension
+      {"cut.xyz123", "ply\nformat ascii 1.0\nelement vertex 3\n", "no 'end_header'"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string path = write(c.name, c.text);
+    const Result<TriangleMesh> mesh = load_mesh(path);
+    expect_error(mesh, path, c.expected);
+    EXPECT_LT(mesh.message().size(), 300u) << mesh.message();
+  }
+}
+
 TEST_F(LoadMesh, ScaleMustBeAFinitePositiveNumber) {
   const std::string path = write("tet.stl", kTetrahedronStl);
   struct Case {
