@@ -20,6 +20,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "off_file.h"
 #include "ply_header.h"
 
 namespace cubespring {
@@ -231,9 +232,11 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   }
   Status readable = check_readable(path);
   if (!readable.ok()) return readable;
-  // assimp trusts a PLY file's header: checked first (ply_header.h)
+  // what assimp's PLY and OFF readers trust is checked first (ply_header.h, off_file.h)
   Status ply = check_ply_header(path);
   if (!ply.ok()) return ply;
+  Status off = check_off_file(path);
+  if (!off.ok()) return off;
 
   // No logger is created, so assimp stays quiet (its default logger discards everything).
   Assimp::Importer importer;

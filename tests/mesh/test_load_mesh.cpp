@@ -555,6 +555,42 @@ TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
   }
 }
 
+const char* const kTetrahedronOff = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+
+TEST_F(LoadMesh, OffKeepsItsTriangles) {
+  for (const std::string& text : {std::string(kTetrahedronOff), "# a comment\nOFF 4 4 6\n" + std::string(kTetrahedronOff).substr(10)}) {
+    const Result<TriangleMesh> mesh = load_mesh(write("tet.off", text));
+    ASSERT_TRUE(mesh.ok()) << mesh.message();
+    EXPECT_EQ(mesh->num_triangles(), 4);
+    EXPECT_DOUBLE_EQ(signed_volume(*mesh), 1.0 / 6.0);
+  }
+}
+
+// assimp 5.2's OFF reader copies each line into 4096 bytes unchecked (a 100,000-character comment
+// line crashed it, SIGSEGV) and allocates what its counts declare before reading
+TEST_F(LoadMesh, AnOffFileAssimpWouldTrustIsCheckedFirst) {
+  struct Case {
+    const char* name;
+    std::string text;
+    const char* expected;
+  };
+  std::string long_line = kTetrahedronOff;
+  long_line.insert(long_line.find("3 0 1 3"), "# " + std::string(100000, 'x') + "\n");
+  const Case cases[] = {
+      {"long_line.off", long_line, "line 8: has 100002 characters"},
+      {"huge.off", "OFF\n4000000000 4 6\n0 0 0\n", "line 2: declares 4000000000 vertices and 4 faces"},
+      {"letters.off", "OFF\n4 four 6\n0 0 0\n", "line 2: 'four': expected the vertex, face and edge counts"},
+      {"short.off", "OFF\n", "ends before its vertex, face and edge counts"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string path = write(c.name, c.text);
+    const Result<TriangleMesh> mesh = load_mesh(path);
+    expect_error(mesh, path, c.expected);
+    EXPECT_LT(mesh.message().size(), 300u) << mesh.message();
+  }
+}
+
 TEST_F(LoadMesh, ScaleMustBeAFinitePositiveNumber) {
   const std::string path = write("tet.stl", kTetrahedronStl);
   struct Case {
