@@ -17,8 +17,10 @@ inline constexpr std::size_t kOffLineLimit = 4095;
 
 /// When the file at `path` is an OFF file (its extension is .off, or its first word ends in OFF:
 /// OFF, COFF, NOFF, STOFF, 4OFF, nOFF..., which is how assimp knows one), checks that no line is
-/// longer than kOffLineLimit and that its vertex and face counts are whole numbers that the lines
-/// after them can hold (one line each). The error names the file, the line and what was expected.
+/// longer than kOffLineLimit, that its vertex and face counts are whole numbers that the lines
+/// after them can hold (one line each, empty lines skipped, as assimp reads them), and that each
+/// face has 1 to 9 corners, each a vertex index below the vertex count. The error names the file,
+/// the line and what was expected.
 /// Any other file passes.
 Status check_off_file(const std::string& path);
 

@@ -12,8 +12,8 @@
 
 namespace cubespring {
 
-/// When the file at `path` is a PLY file (it begins with the line `ply`, which is how assimp
-/// knows one whatever the extension), checks that its header ends with `end_header` within its
+/// When the file at `path` is a PLY file to assimp (its extension is .ply, or it begins with
+/// `ply`), checks that it begins with the line `ply`, that its header ends with `end_header` within its
 /// first kPlyHeaderLimit bytes, that every header line is one the format has (format, element,
 /// property, comment, obj_info) with known types and whole-number counts, and that the elements
 /// it declares fit in the bytes after it (each element takes at least its properties' bytes in

@@ -538,6 +538,8 @@ TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
   huge.replace(huge.find("element vertex 4"), 16, "element vertex 4000000000");
   std::string typo = kTetrahedronPly;
   typo.replace(typo.find("property float y"), 16, "property flaot y");
+  std::string long_list = binary_tetrahedron_ply();
+  long_list[long_list.size() - 13] = static_cast<char>(255);  // the last face's corner count
   const Case cases[] = {
       {"cut.ply", "ply\nformat ascii 1.0\n", "no 'end_header' line in its first 21 bytes"},
       {"damaged.ply", binary_tetrahedron_ply("end_heaxer"), "line 9: 'end_heaxer' is not a PLY header line"},
@@ -545,6 +547,16 @@ TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
       {"typo.ply", typo, "line 5: 'property flaot y': expected 'property TYPE NAME'"},
       // assimp knows a PLY by its first line, whatever the extension
       {"cut.xyz123", "ply\nformat ascii 1.0\nelement vertex 3\n", "no 'end_header'"},
+      // and by its extension, whatever the first line (found by fuzzing: a crash)
+      {"not_ply.ply", "ply\x9d\x9d\nformat ascii 1.0\n", "line 1: a PLY file begins with the line 'ply'"},
+      // a second format line, binary then ASCII, made assimp write past its arrays (fuzzing)
+      {"two_formats.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nformat ascii 1.0\nend_header\n1\n2\n",
+       "line 5: a second 'format' line"},
+      // a binary face list longer than the file
+      {"long_list.ply", long_list, "line 7: the file ends inside its 'face' elements"},
+      // a vertical tab after 'end_header' hid it from assimp, which read forever (fuzzing)
+      {"tab.ply", std::string(kTetrahedronPly).replace(std::string(kTetrahedronPly).find("end_header") + 10, 1, "\v"),
+       "line 9: 'end_header?0 0 0' holds a byte that is not text"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -579,8 +591,11 @@ TEST_F(LoadMesh, AnOffFileAssimpWouldTrustIsCheckedFirst) {
   const Case cases[] = {
       {"long_line.off", long_line, "line 8: has 100002 characters"},
       {"huge.off", "OFF\n4000000000 4 6\n0 0 0\n", "line 2: declares 4000000000 vertices and 4 faces"},
-      {"letters.off", "OFF\n4 four 6\n0 0 0\n", "line 2: 'four': expected the vertex, face and edge counts"},
-      {"short.off", "OFF\n", "ends before its vertex, face and edge counts"},
+      {"letters.off", "OFF\n4 four 6\n0 0 0\n", "line 2: expected the vertex, face and edge counts"},
+      {"short.off", "OFF\n", "expected the vertex, face and edge counts"},
+      // found by fuzzing: a face of 13 corners crashed assimp; an index past the vertices
+      {"corners.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n13 0 2 1\n", "line 7: face 0 has 13 corners"},
+      {"index.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 4\n", "face 0: corner 2 is vertex 4: expected a vertex index below 4"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
