@@ -14,7 +14,7 @@ formats=("${@:-ply off}")
 compiler=$(command -v clang++-16 || command -v clang++-14 || command -v clang++)
 mkdir -p build/fuzz
 "$compiler" -std=c++17 -O1 -g -fsanitize=fuzzer,address -Iinclude -I/usr/include/eigen3 \
-  tests/fuzz/fuzz_load_mesh.cpp src/mesh/load_mesh.cpp src/mesh/ply_header.cpp src/mesh/off_file.cpp \
+  tests/fuzz/fuzz_load_mesh.cpp src/mesh/load_mesh.cpp src/mesh/ply_file.cpp src/mesh/off_file.cpp \
   build/release/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_load_mesh
 for format in ${formats[@]}; do
   corpus=build/fuzz/corpus_$format

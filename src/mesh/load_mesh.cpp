@@ -21,7 +21,7 @@
 #include <assimp/scene.h>
 
 #include "off_file.h"
-#include "ply_header.h"
+#include "ply_file.h"
 
 namespace cubespring {
 namespace {
@@ -232,8 +232,8 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   }
   Status readable = check_readable(path);
   if (!readable.ok()) return readable;
-  // what assimp's PLY and OFF readers trust is checked first (ply_header.h, off_file.h)
-  Status ply = check_ply_header(path);
+  // what assimp's PLY and OFF readers trust is checked first (ply_file.h, off_file.h)
+  Status ply = check_ply_file(path);
   if (!ply.ok()) return ply;
   Status off = check_off_file(path);
   if (!off.ok()) return off;

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "ply_header.h"
+#include "ply_file.h"
 
 #include <algorithm>
 #include <cctype>
@@ -104,7 +104,7 @@ Status header_error(const std::string& path, int line, const std::string& proble
 
 }  // namespace
 
-Status check_ply_header(const std::string& path) {
+Status check_ply_file(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) return {};  // load_mesh reports an unreadable file itself
   std::string head(kPlyHeaderLimit, '\0');
