@@ -45,6 +45,14 @@ class LoadMesh : public ::testing::Test {
     return path.string();
   }
 
+  // A file load_mesh must refuse, with a short message holding `expected`.
+  struct Refused {
+    const char* name;
+    std::string text;
+    const char* expected;
+  };
+  void expect_each_refused(const std::vector<Refused>& files) const;
+
   fs::path dir_;
 };
 
@@ -88,6 +96,16 @@ void expect_error(const Result<TriangleMesh>& result, const std::string& path,
   EXPECT_NE(result.message().find(path), std::string::npos) << result.message();
   EXPECT_NE(result.message().find(fragment), std::string::npos)
       << "expected '" << fragment << "' in: " << result.message();
+}
+
+void LoadMesh::expect_each_refused(const std::vector<Refused>& files) const {
+  for (const Refused& file : files) {
+    SCOPED_TRACE(file.name);
+    const std::string path = write(file.name, file.text);
+    const Result<TriangleMesh> mesh = load_mesh(path);
+    expect_error(mesh, path, file.expected);
+    EXPECT_LT(mesh.message().size(), 300u) << mesh.message();
+  }
 }
 
 // Two closed cubes of quads, counter-clockwise seen from outside: outer [0, 2]^3 and
@@ -529,18 +547,13 @@ TEST_F(LoadMesh, BinaryPlyKeepsItsTriangles) {
 // assimp 5.2 trusts a PLY header: without 'end_header' it read forever, with it damaged in a
 // binary file it crashed (SIGSEGV), with a count larger than the file it allocated gigabytes
 TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
-  struct Case {
-    const char* name;
-    std::string text;
-    const char* expected;
-  };
   std::string huge = kTetrahedronPly;
   huge.replace(huge.find("element vertex 4"), 16, "element vertex 4000000000");
   std::string typo = kTetrahedronPly;
   typo.replace(typo.find("property float y"), 16, "property flaot y");
   std::string long_list = binary_tetrahedron_ply();
   long_list[long_list.size() - 13] = static_cast<char>(255);  // the last face's corner count
-  const Case cases[] = {
+  const std::vector<Refused> cases = {
       {"cut.ply", "ply\nformat ascii 1.0\n", "no 'end_header' line in its first 21 bytes"},
       {"damaged.ply", binary_tetrahedron_ply("end_heaxer"), "line 9: 'end_heaxer' is not a PLY header line"},
       {"huge.ply", huge, "line 3: declares 4000000000 'vertex' elements"},
@@ -558,13 +571,7 @@ TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
       {"tab.ply", std::string(kTetrahedronPly).replace(std::string(kTetrahedronPly).find("end_header") + 10, 1, "\v"),
        "line 9: 'end_header?0 0 0' holds a byte that is not text"},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const std::string path = write(c.name, c.text);
-    const Result<TriangleMesh> mesh = load_mesh(path);
-    expect_error(mesh, path, c.expected);
-    EXPECT_LT(mesh.message().size(), 300u) << mesh.message();
-  }
+  expect_each_refused(cases);
 }
 
 const char* const kTetrahedronOff = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
@@ -581,14 +588,9 @@ TEST_F(LoadMesh, OffKeepsItsTriangles) {
 // assimp 5.2's OFF reader copies each line into 4096 bytes unchecked (a 100,000-character comment
 // line crashed it, SIGSEGV) and allocates what its counts declare before reading
 TEST_F(LoadMesh, AnOffFileAssimpWouldTrustIsCheckedFirst) {
-  struct Case {
-    const char* name;
-    std::string text;
-    const char* expected;
-  };
   std::string long_line = kTetrahedronOff;
   long_line.insert(long_line.find("3 0 1 3"), "# " + std::string(100000, 'x') + "\n");
-  const Case cases[] = {
+  const std::vector<Refused> cases = {
       {"long_line.off", long_line, "line 8: has 100002 characters"},
       {"huge.off", "OFF\n4000000000 4 6\n0 0 0\n", "line 2: declares 4000000000 vertices and 4 faces"},
       {"letters.off", "OFF\n4 four 6\n0 0 0\n", "line 2: expected the vertex, face and edge counts"},
@@ -597,13 +599,7 @@ TEST_F(LoadMesh, AnOffFileAssimpWouldTrustIsCheckedFirst) {
       {"corners.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n13 0 2 1\n", "line 7: face 0 has 13 corners"},
       {"index.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 4\n", "face 0: corner 2 is vertex 4: expected a vertex index below 4"},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const std::string path = write(c.name, c.text);
-    const Result<TriangleMesh> mesh = load_mesh(path);
-    expect_error(mesh, path, c.expected);
-    EXPECT_LT(mesh.message().size(), 300u) << mesh.message();
-  }
+  expect_each_refused(cases);
 }
 
 TEST_F(LoadMesh, ScaleMustBeAFinitePositiveNumber) {
