@@ -12,6 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "file_extension.h"
+
 namespace cubespring {
 namespace {
 
@@ -98,12 +100,10 @@ Status check_length(const std::string& path, const std::string& line, std::size_
 Status check_off_file(const std::string& path) {
   std::ifstream file(path, std::ios::binary);
   if (!file) return {};  // load_mesh reports an unreadable file itself
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   std::string head(3, '\0');
   file.read(head.data(), 3);
   // assimp takes a file for OFF by its extension, or by the word 'off' at its start
-  const bool named = extension == ".off";
+  const bool named = lowercase_extension(path) == ".off";
   std::string lowered = head;
   for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (!named && lowered != "off") return {};

@@ -13,6 +13,8 @@
 #include <sstream>
 #include <vector>
 
+#include "file_extension.h"
+
 namespace cubespring {
 namespace {
 
@@ -111,9 +113,7 @@ Status check_ply_file(const std::string& path) {
   file.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(file.gcount()));
   // assimp takes a file for PLY by its extension, or by its first bytes
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension != ".ply" && head.compare(0, 3, "ply") != 0) return {};
+  if (lowercase_extension(path) != ".ply" && head.compare(0, 3, "ply") != 0) return {};
   if (head.compare(0, 3, "ply") != 0 || head.size() < 4 || (head[3] != '\n' && head[3] != '\r')) {
     return header_error(path, 1, "a PLY file begins with the line 'ply'");
   }

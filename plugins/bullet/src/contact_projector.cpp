@@ -90,9 +90,9 @@ void ContactProjector::refresh_surface(const std::vector<RigidTrack>& tracks) {
     choose_window(boxes);
     return;
   }
-  double farthest = 0.0;
+  double farthest = 0.0;  // squared
   for (const int v : window_.vertices()) farthest = std::max(farthest, body_.refresh_vertex(v));
-  surface_travel_ += farthest;
+  surface_travel_ += std::sqrt(farthest);
 }
 
 std::vector<ContactBox> ContactProjector::contact_boxes(const std::vector<RigidTrack>& tracks) const {
@@ -195,11 +195,11 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     face_reach.thickness = std::min(reach.thickness, kFaceContactDepthCells * body_.model_.cell_size.maxCoeff());
     const Eigen::Array3d face_lower = to_eigen(low).array() - (face_reach.thickness + reach.offset);
     const Eigen::Array3d face_upper = to_eigen(high).array() + (face_reach.thickness + reach.offset);
+    if (!body_.contact_.face_contacts) continue;
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
     points_.clear();
-    const std::vector<int> no_triangles;
-    for (const int t : body_.contact_.face_contacts ? window_.triangles() : no_triangles) {
+    for (const int t : window_.triangles()) {
       if (touched[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
           touched[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
           touched[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {

@@ -124,7 +124,7 @@ double SoftBody::refresh_vertex(int v) {
   for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
     sum += surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
   }
-  const double moved = (sum - surface_positions_.col(v)).norm();
+  const double moved = (sum - surface_positions_.col(v)).squaredNorm();
   surface_positions_.col(v) = sum;
   return moved;
 }
@@ -161,7 +161,7 @@ double SoftBody::update_moved_surface() {
     farthest = std::max(farthest, refresh_vertex(v));  // the same sums as update_surface(), so the same bits
     vertex_stale_[static_cast<std::size_t>(v)] = 0;
   }
-  return farthest;
+  return std::sqrt(farthest);
 }
 
 Status SoftBody::reset(const State& state) {

@@ -148,7 +148,8 @@ class SoftBody {
   SoftBody() = default;
   /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
   void index_vertices_by_node();
-  /// Contact-surface vertex v from its nodes; returns how far it moved [m].
+  /// Contact-surface vertex v from its nodes; returns how far it moved, squared [m^2] (a square
+  /// root per vertex would cost every refresh; callers take the root of the largest).
   double refresh_vertex(int v);
   /// Every contact-surface vertex from the nodes (after a step moved them all).
   void update_surface();
