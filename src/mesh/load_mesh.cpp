@@ -20,6 +20,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "mesh_format.h"
 #include "off_file.h"
 #include "ply_file.h"
 
@@ -232,6 +233,9 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   }
   Status readable = check_readable(path);
   if (!readable.ok()) return readable;
+  // only the formats the project checks and fuzzes reach assimp's readers (mesh_format.h)
+  Result<MeshFormat> format = mesh_format_of(path);
+  if (!format.ok()) return format.status();
   // what assimp's PLY and OFF readers trust is checked first (ply_file.h, off_file.h)
   Status ply = check_ply_file(path);
   if (!ply.ok()) return ply;

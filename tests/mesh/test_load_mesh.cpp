@@ -460,14 +460,48 @@ TEST_F(LoadMesh, AReaderMessageQuotingTheFileIsCutShort) {
   EXPECT_NE(mesh.message().find("more characters of assimp's message"), std::string::npos);
 }
 
-TEST_F(LoadMesh, UnknownExtensionIsReadByContentOrReported) {
+// ---- the closed list of formats (mesh_format.h) -------------------------------------------------
+
+TEST_F(LoadMesh, AFileOfAnUnknownExtensionIsReadByAListedFormatsContent) {
   // assimp recognises some formats by their content whatever the extension (PLY by its header)
-  const Result<TriangleMesh> ply = load_mesh(write("tet.xyz123", kTetrahedronPly));
-  ASSERT_TRUE(ply.ok()) << ply.message();
-  EXPECT_EQ(ply->num_triangles(), 4);
-  const std::string path =
-      write("words.xyz123", "these are not the coordinates you are looking for\n");
-  expect_error(load_mesh(path), path, "assimp cannot read it");
+  for (const char* name : {"tet.xyz123", "tet"}) {
+    SCOPED_TRACE(name);
+    const Result<TriangleMesh> ply = load_mesh(write(name, kTetrahedronPly));
+    ASSERT_TRUE(ply.ok()) << ply.message();
+    EXPECT_EQ(ply->num_triangles(), 4);
+  }
+  const Result<TriangleMesh> stl = load_mesh(write("tet.xyz123", kTetrahedronStl));
+  ASSERT_TRUE(stl.ok()) << stl.message();
+  EXPECT_EQ(stl->num_triangles(), 4);
+}
+
+// A format assimp reads but the project neither checks nor fuzzes is refused before any reader
+// runs, whatever the file holds; so is a file of no listed format. The message names the list.
+TEST_F(LoadMesh, AFormatOffTheListIsRefusedNamingTheList) {
+  const std::string list = "OBJ (.obj), STL (.stl), PLY (.ply), OFF (.off), glTF (.gltf, .glb), COLLADA (.dae)";
+  struct Case {
+    const char* name;
+    std::string content;
+    const char* expected;
+  };
+  const Case cases[] = {
+      // assimp would take these by their extension (its FBX, 3DS and DirectX readers), a valid
+      // PLY inside or not
+      {"tet.fbx", kTetrahedronPly, "its extension is '.fbx', a format cubespring does not read"},
+      {"tet.3DS", "MM\x10\0\0\0", "its extension is '.3ds', a format cubespring does not read"},
+      {"tet.x", "xof 0303txt 0032\n", "its extension is '.x', a format cubespring does not read"},
+      // an OBJ has no mark of its own: its content is not enough without the extension
+      {"tet.xyz123", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "its extension is '.xyz123' and its first bytes"},
+      {"words", "these are not the coordinates you are looking for\n", "it has no extension and its first bytes"},
+      {"empty.xyz123", "", "its first bytes are none of the formats"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const std::string path = write(c.name, c.content);
+    const Result<TriangleMesh> mesh = load_mesh(path);
+    expect_error(mesh, path, c.expected);
+    EXPECT_NE(mesh.message().find(list), std::string::npos) << mesh.message();
+  }
 }
 
 TEST_F(LoadMesh, EmptyFileIsReported) {

@@ -16,8 +16,10 @@ struct LoadOptions {
                        ///< centimetres [m per file unit], > 0 and finite.
 };
 
-/// Reads a surface mesh file through assimp (OBJ, STL, PLY, COLLADA, glTF, FBX and the other
-/// formats it reads) into one TriangleMesh in metres.
+/// Reads a surface mesh file through assimp into one TriangleMesh in metres. The formats are a
+/// closed list: OBJ (.obj), STL (.stl), PLY (.ply), OFF (.off), glTF (.gltf, .glb) and COLLADA
+/// (.dae), by extension, or by content when the extension is none assimp knows (docs/voxelize.md
+/// section 1); any other file is refused before assimp reads it, with the list in the error.
 ///
 /// - Polygons are triangulated; points and lines are ignored. A file without any triangle (a
 ///   point cloud, a polyline) is an error.
@@ -34,7 +36,7 @@ struct LoadOptions {
 ///   is ignored (no rotation is added). assimp (as packaged) reads coordinates and transforms as
 ///   32-bit floats: about 7 significant digits survive.
 ///
-/// Errors name the file: it cannot be opened, assimp cannot read its format or reports a parse
+/// Errors name the file: it cannot be opened, its format is off the list, assimp cannot read its format or reports a parse
 /// error, it has no triangles, a coordinate is not finite, a face refers to a missing vertex;
 /// or options.scale is not a finite number > 0.
 Result<TriangleMesh> load_mesh(const std::string& path, const LoadOptions& options = {});
