@@ -61,6 +61,16 @@ Status validate(const Material& material) {
   return {};
 }
 
+Material soft_tissue(double young_modulus) {
+  Material tissue;
+  tissue.young_modulus = young_modulus;
+  tissue.poisson_ratio = 0.45;
+  tissue.density = 1060.0;
+  tissue.mass_damping = kSoftTissueMassDamping;
+  tissue.stiffness_damping = 0.0;
+  return tissue;
+}
+
 double shear_modulus(const Material& m) { return m.young_modulus / (2.0 * (1.0 + m.poisson_ratio)); }
 
 double bulk_modulus(const Material& m) {

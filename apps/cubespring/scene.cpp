@@ -368,15 +368,7 @@ Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& 
 
 }  // namespace
 
-Material default_tissue() {
-  Material tissue;
-  tissue.young_modulus = 8e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060.0;
-  tissue.mass_damping = 40.0;
-  tissue.stiffness_damping = 0.0;
-  return tissue;
-}
+Material default_tissue() { return soft_tissue(8e3); }
 
 std::vector<double> Scene::frame_times() const {
   std::vector<double> times;

@@ -32,6 +32,16 @@ inline constexpr double kMaxYoungModulus = 1e13;  ///< [Pa]
 inline constexpr double kMinDensity = 1e-3;       ///< [kg/m^3]
 inline constexpr double kMaxDensity = 1e6;        ///< [kg/m^3]
 
+/// Soft tissue as scenes and the Bullet plugin's examples take it: E = young_modulus [Pa],
+/// nu = 0.45, rho = 1060 kg/m^3, and mass damping alpha = 40/s (no stiffness damping). Soft
+/// organs with their visual meshes come to rest on a table with that damping (mass-weighted RMS
+/// node speed under 1 mm/s: tests/bullet/test_bullet_organs.cpp); without damping an elastic body
+/// dissipates nothing and never does (docs/bullet-plugin.md section 5). Material{}'s own damping
+/// stays 0, an undamped elastic solid. The scenes' default tissue is soft_tissue(8e3).
+Material soft_tissue(double young_modulus);
+/// soft_tissue()'s mass damping [1/s].
+inline constexpr double kSoftTissueMassDamping = 40.0;
+
 /// Checks every field; the message names the field, its value and the allowed range.
 Status validate(const Material& material);
 

@@ -65,11 +65,7 @@ std::optional<Settled> settle_on_table(const Organ& organ, double seconds) {
   Result<Voxelization> voxels = voxelize(*mesh, voxelize_options);
   EXPECT_TRUE(voxels.ok()) << voxels.message();
   if (!voxels) return std::nullopt;
-  Material tissue;
-  tissue.young_modulus = 5e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060;
-  tissue.mass_damping = 40;
+  const Material tissue = soft_tissue(5e3);  // its damping is the one the organs must come to rest with
   bullet::SoftBodySettings settings;
   settings.lattice = lattice_from_voxels(*voxels, {tissue}, CellModel::kExactBending);
   settings.visual_mesh = *mesh;

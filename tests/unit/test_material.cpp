@@ -24,6 +24,18 @@ TEST(Material, ModuliFollowTheElasticRelations) {
 
 TEST(Material, DefaultIsValid) { EXPECT_TRUE(validate(Material{}).ok()); }
 
+// the damped, nearly incompressible tissue scenes and the plugin's examples start from, at the
+// stiffnesses of soft organs (1-50 kPa); the organs' rest test (test_bullet_organs) runs it
+TEST(Material, SoftTissueIsValidAndDamped) {
+  for (const double young_modulus : {1e3, 5e3, 5e4}) {
+    const Material tissue = soft_tissue(young_modulus);
+    EXPECT_TRUE(validate(tissue).ok()) << validate(tissue).message();
+    EXPECT_EQ(tissue.young_modulus, young_modulus);
+    EXPECT_EQ(tissue.mass_damping, kSoftTissueMassDamping);
+    EXPECT_GT(tissue.mass_damping, 0.0) << "an undamped organ never comes to rest";
+  }
+}
+
 struct BadField {
   const char* field;
   Material material;

@@ -4,12 +4,10 @@
 
 #include <sstream>
 
+#include "cubespring/material.h"
+
 namespace cubespring::bullet {
 namespace {
-
-// The mass damping the docs recommend for soft tissue [1/s] (bullet-plugin.md, section 5): the
-// organs, instruments and probes of the plugin's tests come to rest with it.
-constexpr double kTissueMassDamping = 40.0;
 
 // A rigid body that moves more than this fraction of a cell per sub-step outruns the contact,
 // which moves the surface out of it once per sub-step.
@@ -25,7 +23,8 @@ std::string instability_causes(const Model& model, const SubStepPlan& plan, cons
   out << ")";
   if (!model.has_mass_damping) {
     out << "; the tissue has no mass damping (Material::mass_damping = 0): soft tissue needs about "
-        << kTissueMassDamping << "/s, or the vibrations that contacts and tools feed it grow unchecked";
+        << kSoftTissueMassDamping
+        << "/s (soft_tissue()), or the vibrations that contacts and tools feed it grow unchecked";
   }
   const double cell = model.cell_size.minCoeff();
   for (const RigidTrack& track : tracks) {
