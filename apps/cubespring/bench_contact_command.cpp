@@ -363,7 +363,7 @@ Command add_bench_contact_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("bench-contact", "Probes pressed and dragged over soft tissue, and instruments "
                                                       "dropped on it, through the Bullet plugin: penetration, force, "
                                                       "rest");
-  cmd->add_option("--mesh", options->mesh, "an organ mesh to probe besides the block (any file assimp reads)");
+  cmd->add_option("--mesh", options->mesh, "an organ mesh to probe besides the block (OBJ, STL, PLY, OFF, glTF or COLLADA)");
   cmd->add_option("--longest-side", options->longest_side, "the organ's longest side once scaled [m]")
       ->check(finite_positive_number())
       ->capture_default_str();

@@ -167,7 +167,7 @@ Command add_voxelize_command(CLI::App& app) {
   auto options = std::make_shared<VoxelizeCommandOptions>();
   CLI::App* cmd = app.add_subcommand("voxelize", "Turn a surface mesh file into cube cells and report volumes, "
                                                  "counts, memory and the mesh's problems");
-  cmd->add_option("mesh", options->mesh, "surface mesh file (any format assimp reads: OBJ, STL, PLY, glTF, ...)")
+  cmd->add_option("mesh", options->mesh, "surface mesh file: OBJ, STL, PLY, OFF, glTF or COLLADA")
       ->required();
   CLI::Option* size = cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]");
   CLI::Option* across = cmd->add_option("--cells-across", options->cells_across,

@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: MIT
 // The way out of a flat-faced rigid shape (rigid_distance.h): through the face the tissue presses
 // on at an edge, but never through a face more than half a cell beyond the nearest one.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "rigid_distance.h"
@@ -77,6 +79,76 @@ TEST(RigidDistance, ACylinderAndAHullFollowTheSameRule) {
   }
   hull.setMargin(0);
   expect_near(penetration_push(hull, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
+}
+
+// A triangle of tissue wrapped over the top front edge of a 2 cm box (the edge along x at
+// y = z = h), its plane normal to the edge's diagonal d = (0, 1, 1) / sqrt(2), `beyond` [m] out
+// along d from the edge (negative: the edge pokes through it into the tissue by that much), its
+// corners 3 mm around the point over the edge at x = `along`; the tissue lies beyond it, so its
+// outward normal is -d (counter-clockwise seen from the box).
+struct AcrossTheEdge {
+  Eigen::Vector3d a, b, c;
+};
+constexpr double kBoxHalf = 0.01;
+AcrossTheEdge triangle_across_the_edge(double beyond, double along = 0.0) {
+  const Eigen::Vector3d n = Eigen::Vector3d(0, 1, 1).normalized();
+  const Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d(0, 1, -1).normalized();
+  const Eigen::Vector3d centre = Eigen::Vector3d(along, kBoxHalf, kBoxHalf) + beyond * n;
+  return {centre - 0.003 * e1 - 0.003 * e2, centre + 0.003 * e2, centre + 0.003 * e1 - 0.003 * e2};
+}
+
+TEST(RigidDistance, ABoxEdgeThroughATriangleBetweenItsCornersPushesItByTheEdgesDepth) {
+  const btScalar half = static_cast<btScalar>(kBoxHalf);
+  const btBoxShape box(btVector3(half, half, half));
+  const std::vector<RigidEdge> edges = box_edges(box, btTransform::getIdentity(), 0.0);
+  ASSERT_EQ(edges.size(), 12u);
+  const auto deepest = [&](const AcrossTheEdge& t, double thickness) {
+    std::optional<FacePenetration> found;
+    for (const RigidEdge& edge : edges) {
+      const std::optional<FacePenetration> through = edge_penetration(edge, t.a, t.b, t.c, thickness);
+      if (through && (!found || through->depth > found->depth)) found = through;
+    }
+    return found;
+  };
+  // the edge 1 mm through the triangle: the triangle goes back 1 mm, its foot on the edge's line
+  const AcrossTheEdge poked = triangle_across_the_edge(-0.001);
+  const std::optional<FacePenetration> through = deepest(poked, 0.004);
+  ASSERT_TRUE(through.has_value());
+  EXPECT_NEAR(through->depth, 0.001, 1e-9);
+  EXPECT_NEAR(through->barycentric.sum(), 1.0, 1e-12);
+  EXPECT_TRUE((through->barycentric.array() >= -1e-12).all()) << through->barycentric.transpose();
+  const Eigen::Vector3d foot = through->barycentric[0] * poked.a + through->barycentric[1] * poked.b +
+                               through->barycentric[2] * poked.c;
+  const Eigen::Vector3d on_edge = foot + 0.001 * Eigen::Vector3d(0, 1, 1).normalized();
+  EXPECT_NEAR(on_edge.y(), kBoxHalf, 1e-9);
+  EXPECT_NEAR(on_edge.z(), kBoxHalf, 1e-9);
+  // clear of it, beside it (the edge ends at x = 0.01; the triangle spans x = 0.012 .. 0.018), or
+  // deeper than the thickness (a tool inside the tissue, which the vertex contacts hold): nothing
+  EXPECT_FALSE(deepest(triangle_across_the_edge(0.0005), 0.004).has_value());
+  EXPECT_FALSE(deepest(triangle_across_the_edge(-0.001, 0.015), 0.004).has_value());
+  EXPECT_FALSE(deepest(poked, 0.0005).has_value());
+  // grown by an offset, the edge reaches that much farther through
+  const std::vector<RigidEdge> grown = box_edges(box, btTransform::getIdentity(), 0.0005);
+  double grown_depth = 0.0;
+  for (const RigidEdge& edge : grown) {
+    if (const std::optional<FacePenetration> t = edge_penetration(edge, poked.a, poked.b, poked.c, 0.004)) {
+      grown_depth = std::max(grown_depth, t->depth);
+    }
+  }
+  EXPECT_NEAR(grown_depth, 0.001 + 0.0005 * std::sqrt(2.0), 1e-9);
+}
+
+TEST(RigidDistance, OnlyBoxesHaveEdges) {
+  EXPECT_TRUE(box_edges(btSphereShape(0.01f), btTransform::getIdentity(), 0.0).empty());
+  EXPECT_TRUE(box_edges(btCapsuleShapeZ(0.005f, 0.02f), btTransform::getIdentity(), 0.0).empty());
+  btCompoundShape handle;
+  btBoxShape blade(btVector3(0.01f, 0.002f, 0.03f));
+  handle.addChildShape(btTransform(btQuaternion::getIdentity(), btVector3(0, 0, 0.05f)), &blade);
+  const std::vector<RigidEdge> edges = box_edges(handle, btTransform::getIdentity(), 0.0);
+  ASSERT_EQ(edges.size(), 12u);
+  for (const RigidEdge& edge : edges) {
+    EXPECT_NEAR(std::abs(edge.from.z() - 0.05), 0.03, 1e-7) << "the child's place is kept";
+  }
 }
 
 }  // namespace

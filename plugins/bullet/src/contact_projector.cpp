@@ -195,6 +195,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     face_reach.thickness = std::min(reach.thickness, kFaceContactDepthCells * body_.model_.cell_size.maxCoeff());
     const Eigen::Array3d face_lower = to_eigen(low).array() - (face_reach.thickness + reach.offset);
     const Eigen::Array3d face_upper = to_eigen(high).array() + (face_reach.thickness + reach.offset);
+    resolve_box_edges(track, face_reach.thickness, held);
     if (!body_.contact_.face_contacts) continue;
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
@@ -231,6 +232,50 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   for (auto entry = last_cores_.begin(); entry != last_cores_.end();) {
     entry = entry->second.seen ? std::next(entry) : last_cores_.erase(entry);
   }
+}
+
+void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held) {
+  const std::vector<RigidEdge> edges =
+      box_edges(*track.object->getCollisionShape(), track.transform, body_.contact_.offset);
+  if (edges.empty()) return;
+  // each edge meets only the triangles near it, and most edges none: a table's lie far from an
+  // organ lying on it
+  Eigen::AlignedBox3d surface;
+  for (const int v : window_.vertices()) surface.extend(body_.surface_positions_.col(v));
+  std::vector<RigidEdge> near_edges;
+  std::vector<Eigen::AlignedBox3d> near_edge;
+  Eigen::AlignedBox3d near_any;
+  for (const RigidEdge& edge : edges) {
+    Eigen::AlignedBox3d box(edge.from.cwiseMin(edge.to), edge.from.cwiseMax(edge.to));
+    box.min().array() -= thickness;
+    box.max().array() += thickness;
+    if (!box.intersects(surface)) continue;
+    near_edges.push_back(edge);
+    near_edge.push_back(box);
+    near_any.extend(box);
+  }
+  if (near_edges.empty()) return;
+  points_.clear();
+  for (const int t : window_.triangles()) {
+    const auto corner = [&](int k) { return static_cast<std::size_t>(body_.surface_triangles_(k, t)); };
+    const Eigen::Vector3d a = body_.surface_positions_.col(static_cast<Eigen::Index>(corner(0)));
+    const Eigen::Vector3d b = body_.surface_positions_.col(static_cast<Eigen::Index>(corner(1)));
+    const Eigen::Vector3d c = body_.surface_positions_.col(static_cast<Eigen::Index>(corner(2)));
+    const Eigen::AlignedBox3d triangle_box(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
+    if (!near_any.intersects(triangle_box)) continue;
+    if (!held.empty() && (held[corner(0)] || held[corner(1)] || held[corner(2)])) continue;  // would move held nodes
+    std::optional<FacePenetration> deepest;
+    for (std::size_t e = 0; e < near_edges.size(); ++e) {
+      if (!near_edge[e].intersects(triangle_box)) continue;
+      const std::optional<FacePenetration> through = edge_penetration(near_edges[e], a, b, c, thickness);
+      if (through && (!deepest || through->depth > deepest->depth)) deepest = through;
+    }
+    if (!deepest) continue;
+    const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
+    add_face_point(t, deepest->barycentric, -deepest->depth * normal);
+  }
+  apply_points(track);
+  refresh_moved();
 }
 
 void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& core, const std::vector<char>& held) {

@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "cubespring/bullet/soft_body.h"
+#include "rigid_distance.h"
 #include "rigid_track.h"
 #include "round_tool_contact.h"
 #include "surface_window.h"
@@ -61,6 +62,9 @@ class ContactProjector {
   // The one point where a round tool's core is nearest the surface (or deepest inside it) is
   // pushed to the tool's surface along the tissue's normal there.
   void resolve_round_tool(RigidTrack& track, const RoundCore& core, const std::vector<char>& held);
+  // The rigid body's box edges pushed out of the triangles they reach through between corners
+  // that the vertex contacts left on the box's faces, less than `thickness` behind them.
+  void resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held);
   void add_vertex_point(int vertex, const Eigen::Vector3d& push);
   void add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push);
   ContactPoint& new_point(const Eigen::Vector3d& push);

@@ -236,6 +236,47 @@ std::optional<Eigen::Vector3d> concave_push(const btConcaveShape& concave, const
   return Eigen::Vector3d(to_eigen(transform.getBasis() * to_bt(target - local)));
 }
 
+// Barycentric coordinates of a point of the triangle's plane.
+Eigen::Vector3d barycentric_in_plane(const Eigen::Vector3d& point, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                     const Eigen::Vector3d& c, const Eigen::Vector3d& normal, double twice_area) {
+  const double u = (c - b).cross(point - b).dot(normal) / twice_area;
+  const double v = (a - c).cross(point - c).dot(normal) / twice_area;
+  return {u, v, 1.0 - u - v};
+}
+
+// The deepest point of segment [p, q] behind the plane of triangle (a, b, c) (unit outward normal
+// `normal`) among its points over the triangle: the segment clipped to the triangle's prism, whose
+// depth is deepest at one end of what is left. Its depth and its foot on the plane.
+std::optional<std::pair<double, Eigen::Vector3d>> segment_behind_triangle(const Eigen::Vector3d& p,
+                                                                          const Eigen::Vector3d& q,
+                                                                          const Eigen::Vector3d (&corners)[3],
+                                                                          const Eigen::Vector3d& normal) {
+  double first = 0.0, last = 1.0;
+  const Eigen::Vector3d along = q - p;
+  for (int e = 0; e < 3; ++e) {
+    const Eigen::Vector3d& from = corners[e];
+    const Eigen::Vector3d inward = normal.cross(corners[(e + 1) % 3] - from);  // towards the third corner
+    const double at_p = inward.dot(p - from);
+    const double rate = inward.dot(along);
+    if (rate == 0.0) {
+      if (at_p < 0.0) return std::nullopt;
+      continue;
+    }
+    const double crossing = -at_p / rate;
+    if (rate > 0.0) {
+      first = std::max(first, crossing);
+    } else {
+      last = std::min(last, crossing);
+    }
+  }
+  if (first > last) return std::nullopt;
+  const Eigen::Vector3d at_first = p + first * along, at_last = p + last * along;
+  const double depth_first = (corners[0] - at_first).dot(normal), depth_last = (corners[0] - at_last).dot(normal);
+  const bool first_deeper = depth_first >= depth_last;
+  const double depth = first_deeper ? depth_first : depth_last;
+  return std::make_pair(depth, Eigen::Vector3d((first_deeper ? at_first : at_last) + depth * normal));
+}
+
 }  // namespace
 
 double push_reach_beyond_bounds(const btCollisionShape& shape, const ContactReach& reach) {
@@ -314,11 +355,50 @@ std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, c
   if (depth <= 0.0 || depth > reach.thickness) return std::nullopt;
   // its foot on the plane must lie inside the triangle
   const Eigen::Vector3d foot = deepest + depth_of_shape * normal;
-  const double u = (c - b).cross(foot - b).dot(normal) / twice_area;
-  const double v = (a - c).cross(foot - c).dot(normal) / twice_area;
-  const double w = 1.0 - u - v;
-  if (u < 0.0 || v < 0.0 || w < 0.0) return std::nullopt;
-  return FacePenetration{Eigen::Vector3d(u, v, w), depth};
+  const Eigen::Vector3d barycentric = barycentric_in_plane(foot, a, b, c, normal, twice_area);
+  if ((barycentric.array() < 0.0).any()) return std::nullopt;
+  return FacePenetration{barycentric, depth};
+}
+
+
+std::vector<RigidEdge> box_edges(const btCollisionShape& shape, const btTransform& transform, double offset) {
+  std::vector<RigidEdge> edges;
+  if (shape.isCompound()) {
+    const auto& compound = static_cast<const btCompoundShape&>(shape);
+    for (int child = 0; child < compound.getNumChildShapes(); ++child) {
+      const std::vector<RigidEdge> more =
+          box_edges(*compound.getChildShape(child), transform * compound.getChildTransform(child), offset);
+      edges.insert(edges.end(), more.begin(), more.end());
+    }
+    return edges;
+  }
+  if (shape.getShapeType() != BOX_SHAPE_PROXYTYPE) return edges;
+  const Eigen::Vector3d half = to_eigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin()).array() + offset;
+  for (int axis = 0; axis < 3; ++axis) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    for (int side = 0; side < 4; ++side) {  // the four edges along the axis
+      Eigen::Vector3d from;
+      from[axis] = -half[axis];
+      from[u] = (side & 1) != 0 ? half[u] : -half[u];
+      from[v] = (side & 2) != 0 ? half[v] : -half[v];
+      Eigen::Vector3d to = from;
+      to[axis] = half[axis];
+      edges.push_back({to_eigen(transform * to_bt(from)), to_eigen(transform * to_bt(to))});
+    }
+  }
+  return edges;
+}
+
+std::optional<FacePenetration> edge_penetration(const RigidEdge& edge, const Eigen::Vector3d& a,
+                                                const Eigen::Vector3d& b, const Eigen::Vector3d& c, double thickness) {
+  const Eigen::Vector3d cross = (b - a).cross(c - a);
+  const double twice_area = cross.norm();
+  if (twice_area == 0.0) return std::nullopt;
+  const Eigen::Vector3d normal = cross / twice_area;
+  const Eigen::Vector3d corners[3] = {a, b, c};
+  const auto deepest = segment_behind_triangle(edge.from, edge.to, corners, normal);
+  if (!deepest || deepest->first <= 0.0 || deepest->first > thickness) return std::nullopt;
+  return FacePenetration{barycentric_in_plane(deepest->second, a, b, c, normal, twice_area), deepest->first};
 }
 
 }  // namespace cubespring::bullet

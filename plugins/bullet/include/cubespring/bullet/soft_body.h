@@ -33,8 +33,8 @@ struct ContactSettings {
                           ///< times the normal one
   /// Also test convex tools other than spheres and capsules against the inside of surface
   /// triangles whose corners they miss, so that a tip thinner than a cell cannot pass between
-  /// vertices. Spheres and capsules meet the whole surface whatever this says (docs/bullet-plugin.md
-  /// section 2.6). Off by default: on an asymmetric triangulation it pushed round bodies resting
+  /// vertices. Spheres and capsules meet the whole surface, and boxes' edges the triangles between
+  /// vertices, whatever this says (docs/bullet-plugin.md sections 2.6 and 2.7). Off by default: on an asymmetric triangulation it pushed round bodies resting
   /// in a dimple sideways, and they rolled (docs/bullet-plugin.md section 5).
   bool face_contacts = false;
   /// Contact is a projection, not a penalty spring: it has no stiffness to tune, at any scale.
