@@ -24,6 +24,36 @@ int family_of_step(const Eigen::Vector3i& step) {
   return -1;
 }
 
+// GridLayout::law_cells of a body of several materials. The law's constants differ between
+// materials only in their moduli and the diagonals' stiffness (the cells are one size), which
+// neo_hookean_cell_pass reads from here; the rest it takes from the first material.
+void set_law_cells(GridLayout& grid) {
+  const NeoHookeanConstants& first = grid.law_constants.front();
+  for (const NeoHookeanConstants& constants : grid.law_constants) {
+    if (constants.rest_volume != first.rest_volume || constants.cell_size != first.cell_size ||
+        constants.diagonal_length != first.diagonal_length) {
+      return;  // not one size after all: the pass takes each cell's constants one by one
+    }
+  }
+  GridLayout::LawCells& cells = grid.law_cells;
+  const std::size_t size = grid.cell_law.size();
+  cells.c10.assign(size, first.c10);
+  cells.half_bulk.assign(size, first.half_bulk);
+  cells.barrier.assign(size, first.barrier);
+  cells.diagonal_stiffness.assign(size, first.diagonal_stiffness);
+  cells.quarter.assign(size, 0.0);
+  for (std::size_t point = 0; point < size; ++point) {
+    const int law = grid.cell_law[point];
+    if (law < 0) continue;
+    const NeoHookeanConstants& constants = grid.law_constants[static_cast<std::size_t>(law)];
+    cells.c10[point] = constants.c10;
+    cells.half_bulk[point] = constants.half_bulk;
+    cells.barrier[point] = constants.barrier;
+    cells.diagonal_stiffness[point] = constants.diagonal_stiffness;
+    cells.quarter[point] = 0.25;
+  }
+}
+
 // The cells' coefficients as constants when every cell has the same (to the bit).
 void set_uniform_cells(const Model& model, GridLayout& grid) {
   const int first = grid.point(model.cell_grid_index[0]);
@@ -190,6 +220,7 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
       grid.cell_beta[point] = model.materials[model.cell_material[c]].stiffness_damping;
     }
   }
+  if (neo_hookean && grid.law_constants.size() > 1) set_law_cells(grid);
   set_uniform_cells(model, grid);
   for (int f = 0; f < kSpringFamilies; ++f) set_uniform_family(grid, f);
   return layout;

@@ -56,7 +56,10 @@ inline constexpr double kSmallestVolumeRatio = 0.05;
 /// edge vectors m[p][c] [m]: the term written once, for neo_hookean_cell_energy and for the grid
 /// passes' loop over a layer's cells, which it lets vectorise (no branch: the Taylor continuation
 /// below kSmallestVolumeRatio and the barrier below kBarrierVolumeRatio are selects; no call).
-[[gnu::always_inline]] inline double neo_hookean_term(const NeoHookeanConstants& k, const double (&m)[3][3],
+/// `Constants` is NeoHookeanConstants, or a plain struct with the fields the term reads (a loop
+/// whose cells' materials differ builds one per cell, which an Eigen member would keep scalar).
+template <class Constants>
+[[gnu::always_inline]] inline double neo_hookean_term(const Constants& k, const double (&m)[3][3],
                                                       double (&gradient)[3][3]) {
   const double inverse_sq[3] = {1.0 / (k.cell_size[0] * k.cell_size[0]), 1.0 / (k.cell_size[1] * k.cell_size[1]),
                                 1.0 / (k.cell_size[2] * k.cell_size[2])};  // constants of the loop too
