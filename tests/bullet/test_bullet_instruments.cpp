@@ -40,6 +40,21 @@ btRigidBody* drop_box(test::BulletScene& scene, double mass, double extra_height
                          test::at(0, 0, 0.05 + kHalf + 0.005 + extra_height));
 }
 
+// Steps the scene `seconds` at Bullet steps of `step` [s], checking that no soft body stops;
+// returns the least volume of a cell over those steps, as a fraction of its rest volume.
+double run_watching_the_cells(test::BulletScene& scene, const bullet::SoftBody& soft, double seconds, double step) {
+  double least = 1.0;
+  for (int i = 0; i < static_cast<int>(seconds / step); ++i) {
+    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
+    EXPECT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+    if (!scene.world().getSoftBodyError().empty()) return 0.0;
+    for (int c = 0; c < soft.model().num_cells(); ++c) {
+      least = std::min(least, cell_signed_volume(soft.model(), soft.state().positions, c) / soft.model().cell_size.prod());
+    }
+  }
+  return least;
+}
+
 struct Drop {
   double mass;  // [kg]
   double step;  // Bullet's [s]
@@ -105,14 +120,8 @@ TEST_P(InstrumentOnSlipperyTissue, RestsOnTheTissueWithoutCuttingIn) {
   const double mass = 0.2;
   btRigidBody* box = drop_box(scene, mass);
   const double step = GetParam().step;
-  double least = 1.0;
-  for (int i = 0; i < static_cast<int>(2.5 / step); ++i) {
-    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
-    ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
-    for (int c = 0; c < soft->model().num_cells(); ++c) {
-      least = std::min(least, cell_signed_volume(soft->model(), soft->state().positions, c) / soft->model().cell_size.prod());
-    }
-  }
+  const double least = run_watching_the_cells(scene, *soft, 2.5, step);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty());
   const btVector3 before = box->getCenterOfMassPosition();
   scene.run(0.5, step);
   ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
@@ -154,15 +163,7 @@ TEST_P(TippingInstrument, NeverTurnsACellInsideOut) {
   bullet::SoftBody* soft = add_tissue_block(scene);
   ASSERT_NE(soft, nullptr);
   drop_box(scene, 0.2, GetParam().extra_height);
-  const double step = GetParam().step;
-  double least = 1.0;
-  for (int i = 0; i < static_cast<int>(1.2 / step); ++i) {
-    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
-    ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
-    for (int c = 0; c < soft->model().num_cells(); ++c) {
-      least = std::min(least, cell_signed_volume(soft->model(), soft->state().positions, c) / soft->model().cell_size.prod());
-    }
-  }
+  const double least = run_watching_the_cells(scene, *soft, 1.2, GetParam().step);
   std::printf("least cell volume ratio over 1.2 s: %.3f\n", least);
   EXPECT_GT(least, 0.1);
 }

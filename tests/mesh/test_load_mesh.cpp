@@ -479,29 +479,24 @@ TEST_F(LoadMesh, AFileOfAnUnknownExtensionIsReadByAListedFormatsContent) {
 // runs, whatever the file holds; so is a file of no listed format. The message names the list.
 TEST_F(LoadMesh, AFormatOffTheListIsRefusedNamingTheList) {
   const std::string list = "OBJ (.obj), STL (.stl), PLY (.ply), OFF (.off), glTF (.gltf, .glb), COLLADA (.dae)";
-  struct Case {
-    const char* name;
-    std::string content;
-    const char* expected;
-  };
-  const Case cases[] = {
+  const std::string named = "', a format cubespring does not read (it reads " + list;
+  const std::string unknown = " and its first bytes are none of the formats cubespring reads (" + list;
+  // what each message says, kept here: Refused holds pointers
+  const std::string fbx = "its extension is '.fbx" + named, three_ds = "its extension is '.3ds" + named,
+                    direct_x = "its extension is '.x" + named, xyz = "its extension is '.xyz123'" + unknown,
+                    none = "it has no extension" + unknown;
+  const std::vector<Refused> cases = {
       // assimp would take these by their extension (its FBX, 3DS and DirectX readers), a valid
       // PLY inside or not
-      {"tet.fbx", kTetrahedronPly, "its extension is '.fbx', a format cubespring does not read"},
-      {"tet.3DS", "MM\x10\0\0\0", "its extension is '.3ds', a format cubespring does not read"},
-      {"tet.x", "xof 0303txt 0032\n", "its extension is '.x', a format cubespring does not read"},
+      {"tet.fbx", kTetrahedronPly, fbx.c_str()},
+      {"tet.3DS", "MM\x10", three_ds.c_str()},
+      {"tet.x", "xof 0303txt 0032\n", direct_x.c_str()},
       // an OBJ has no mark of its own: its content is not enough without the extension
-      {"tet.xyz123", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "its extension is '.xyz123' and its first bytes"},
-      {"words", "these are not the coordinates you are looking for\n", "it has no extension and its first bytes"},
-      {"empty.xyz123", "", "its first bytes are none of the formats"},
+      {"tet.xyz123", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", xyz.c_str()},
+      {"words", "these are not the coordinates you are looking for\n", none.c_str()},
+      {"empty.xyz123", "", xyz.c_str()},
   };
-  for (const Case& c : cases) {
-    SCOPED_TRACE(c.name);
-    const std::string path = write(c.name, c.content);
-    const Result<TriangleMesh> mesh = load_mesh(path);
-    expect_error(mesh, path, c.expected);
-    EXPECT_NE(mesh.message().find(list), std::string::npos) << mesh.message();
-  }
+  expect_each_refused(cases);
 }
 
 TEST_F(LoadMesh, EmptyFileIsReported) {
