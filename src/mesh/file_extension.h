@@ -10,7 +10,11 @@
 namespace cubespring {
 
 inline std::string lowercase_extension(const std::string& path) {
-  std::string extension = std::filesystem::path(path).extension().string();
+  // from the last dot of the file's name, as assimp takes it: a file named ".obj" is an OBJ file
+  // (std::filesystem calls that name a stem without an extension)
+  const std::string name = std::filesystem::path(path).filename().string();
+  const std::size_t dot = name.rfind('.');
+  std::string extension = dot == std::string::npos ? std::string() : name.substr(dot);
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return extension;
 }

@@ -244,6 +244,7 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
 
   // No logger is created, so assimp stays quiet (its default logger discards everything).
   Assimp::Importer importer;
+  keep_only_readers_of(importer, *format);
   // keep the file's coordinates: other formats have no up axis, so none is imposed
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Read first without post-processing: validation rejects a point cloud (a mesh without faces)

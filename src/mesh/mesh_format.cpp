@@ -6,10 +6,14 @@
 #include <array>
 #include <cctype>
 #include <fstream>
+#include <memory>
+#include <sstream>
 #include <optional>
 #include <string_view>
 
+#include <assimp/BaseImporter.h>
 #include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
 
 #include "file_extension.h"
 
@@ -71,12 +75,31 @@ Result<MeshFormat> mesh_format_of(const std::string& path) {
                          supported_mesh_formats() + "); convert the file to one of them");
   }
   std::ifstream file(path, std::ios::binary);
+  if (!file) return Status::error(path + ": cannot open: no such file, or it is not readable");
   std::string head(kHeadBytes, '\0');
   file.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(std::max<std::streamsize>(file.gcount(), 0)));
   if (const std::optional<MeshFormat> format = format_of_content(head)) return *format;
   return Status::error(path + ": " + named + " and its first bytes are none of the formats cubespring reads (" +
                        supported_mesh_formats() + ")");
+}
+
+void keep_only_readers_of(Assimp::Importer& importer, MeshFormat format) {
+  const auto extension = std::find_if(kExtensions.begin(), kExtensions.end(),
+                                      [&](const KnownExtension& entry) { return entry.format == format; });
+  const std::string wanted(extension->extension.substr(1));  // without its dot, as assimp lists it
+  for (std::size_t index = importer.GetImporterCount(); index-- > 0;) {
+    const aiImporterDesc* description = importer.GetImporterInfo(index);
+    std::istringstream listed(description != nullptr && description->mFileExtensions != nullptr
+                                  ? description->mFileExtensions
+                                  : "");
+    bool reads_it = false;
+    for (std::string word; listed >> word;) reads_it = reads_it || word == wanted;
+    if (reads_it) continue;
+    // unregistered, a reader is the caller's to delete
+    std::unique_ptr<Assimp::BaseImporter> reader(importer.GetImporter(index));
+    if (importer.UnregisterLoader(reader.get()) != AI_SUCCESS) reader.release();  // still the importer's
+  }
 }
 
 }  // namespace cubespring

@@ -475,6 +475,26 @@ TEST_F(LoadMesh, AFileOfAnUnknownExtensionIsReadByAListedFormatsContent) {
   EXPECT_EQ(stl->num_triangles(), 4);
 }
 
+// Only the readers of the file's format see it: assimp tries every reader by content when the
+// one its extension names declines, and sniffs a file of an unknown extension in its own order.
+TEST_F(LoadMesh, OnlyTheReadersOfTheFilesFormatSeeIt) {
+  // an FBX file named .glb: the glTF readers decline it, and assimp's FBX reader read it before
+  std::string fbx = "Kaydara FBX Binary  ";
+  fbx.push_back('\0');
+  fbx += std::string(100, '\x1a');
+  const std::string glb = write("scene.glb", fbx);
+  const Result<TriangleMesh> as_glb = load_mesh(glb);
+  expect_error(as_glb, glb);
+  EXPECT_EQ(as_glb.message().find("FBX"), std::string::npos) << as_glb.message();
+  // a file named only ".obj" is an OBJ file (assimp takes the extension from the last dot)
+  const Result<TriangleMesh> dotfile = load_mesh(write(".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                                              "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"));
+  ASSERT_TRUE(dotfile.ok()) << dotfile.message();
+  EXPECT_EQ(dotfile->num_triangles(), 4);
+  const std::string fbx_dotfile = write(".fbx", kTetrahedronPly);
+  expect_error(load_mesh(fbx_dotfile), fbx_dotfile, "its extension is '.fbx'");
+}
+
 // A format assimp reads but the project neither checks nor fuzzes is refused before any reader
 // runs, whatever the file holds; so is a file of no listed format. The message names the list.
 TEST_F(LoadMesh, AFormatOffTheListIsRefusedNamingTheList) {
