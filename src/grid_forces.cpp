@@ -346,19 +346,16 @@ template <class Constants>
   }
 }
 
-// Which loop pass 1b runs: a body of one material; of several, with their constants at each
-// point (GridLayout::law_cells); or of several, cell by cell.
-enum class LawCellLoop { kUniform, kPerPoint, kEachCell };
 
 // Pass 1b, neo-Hookean bodies only, on one z-layer of cells: the law's term of each cell
 // (neo_hookean_term, which the spring lists call too) from its 8 corners' mean edge vectors m_p;
 // a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end (corner_forces:
-// f_k = -1/4 sum_p s_p(k) dC/dm_p). The loop over a layer vectorises, empty cells included, for a
-// body of one material and for one of several with law_cells (the demo's liver and tumour: cell
-// by cell, skipping the empty two thirds of its box, the pass took 27% of the demo's time, and its
-// elastic step 1.4 times as long); cell by cell, cells take their constants one by one and empty
-// cells are skipped.
-template <LawCellLoop kLoop>
+// f_k = -1/4 sum_p s_p(k) dC/dm_p). The loop over a layer vectorises, empty cells included
+// (their quarter is 0): kUniform, a body of one material; else the constants that differ between
+// materials are read at each point (GridLayout::law_cells; the demo's liver and tumour: cell by
+// cell, skipping the empty two thirds of its box, the pass took 27% of the demo's time, and its
+// elastic step 1.4 times as long).
+template <bool kUniform>
 CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
   const int count = layer_points(grid, grid.cell_rows);
   const int sy = grid.stride_y, sz = grid.stride_z;
@@ -368,11 +365,11 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int 
   const int* __restrict law = grid.cell_law.data() + layer;
   double* out[9];
   for (int i = 0; i < 9; ++i) out[i] = a.out(kCellNeoHookean + i, slab);
-  if constexpr (kLoop == LawCellLoop::kUniform) {
+  if constexpr (kUniform) {
     const NeoHookeanConstants& uniform = grid.law_constants.front();
 #pragma omp simd
     for (int g = 0; g < count; ++g) neo_hookean_cell_at(g, uniform, law[g] >= 0 ? 0.25 : 0.0, position, step, out);
-  } else if constexpr (kLoop == LawCellLoop::kPerPoint) {
+  } else {
     const GridLayout::LawCells& cells = grid.law_cells;
     const double* __restrict c10 = cells.c10.data() + layer;
     const double* __restrict half_bulk = cells.half_bulk.data() + layer;
@@ -395,15 +392,6 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int 
                                      diagonal_stiffness[g],
                                      first.diagonal_length};
       neo_hookean_cell_at(g, constants, quarter[g], position, step, out);
-    }
-  } else {
-    // scalar: an empty cell costs a branch, not a term
-    for (int g = 0; g < count; ++g) {
-      if (law[g] < 0) {
-        for (double* o : out) o[g] = 0.0;
-        continue;
-      }
-      neo_hookean_cell_at(g, grid.law_constants[law[g]], 0.25, position, step, out);
     }
   }
 }
@@ -559,13 +547,8 @@ struct LayerPasses {
     for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
     const int crushed = with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
     if (!grid.neo_hookean) return crushed;
-    if (grid.law_constants.size() == 1) {
-      neo_hookean_cell_pass<LawCellLoop::kUniform>(grid, slab, a);
-    } else if (!grid.law_cells.quarter.empty()) {
-      neo_hookean_cell_pass<LawCellLoop::kPerPoint>(grid, slab, a);
-    } else {
-      neo_hookean_cell_pass<LawCellLoop::kEachCell>(grid, slab, a);
-    }
+    grid.law_constants.size() == 1 ? neo_hookean_cell_pass<true>(grid, slab, a)
+                                   : neo_hookean_cell_pass<false>(grid, slab, a);
     return 0;  // the law's barrier replaces the crushed cells' recovery
   }
   template <bool kWithRate>

@@ -25,16 +25,11 @@ int family_of_step(const Eigen::Vector3i& step) {
 }
 
 // GridLayout::law_cells of a body of several materials. The law's constants differ between
-// materials only in their moduli and the diagonals' stiffness (the cells are one size), which
-// neo_hookean_cell_pass reads from here; the rest it takes from the first material.
+// materials only in their moduli and the diagonals' stiffness (a lattice's cells are one size:
+// Model::cell_size), which neo_hookean_cell_pass reads from here; the rest it takes from the
+// first material.
 void set_law_cells(GridLayout& grid) {
   const NeoHookeanConstants& first = grid.law_constants.front();
-  for (const NeoHookeanConstants& constants : grid.law_constants) {
-    if (constants.rest_volume != first.rest_volume || constants.cell_size != first.cell_size ||
-        constants.diagonal_length != first.diagonal_length) {
-      return;  // not one size after all: the pass takes each cell's constants one by one
-    }
-  }
   GridLayout::LawCells& cells = grid.law_cells;
   const std::size_t size = grid.cell_law.size();
   cells.c10.assign(size, first.c10);

@@ -82,7 +82,8 @@ struct GridLayout {
   std::vector<int> cell_law;
   /// A body of several materials: the constants that differ between them, at each point (an
   /// empty cell's are the first material's), and 1/4 at a cell of the body, 0 elsewhere, so that
-  /// pass 1b's loop over a layer vectorises as a body of one material's does. Empty otherwise.
+  /// pass 1b's loop over a layer vectorises as a body of one material's does. Empty for a body of
+  /// one material.
   struct LawCells {
     std::vector<double> c10, half_bulk, barrier, diagonal_stiffness, quarter;
   };

@@ -39,7 +39,8 @@ double max_stable_time_step(const Model& model, FrequencyBound bound = Frequency
 /// is its volume over the area its other two mean edges span, over its rest size along that axis;
 /// cells at least kThickEnough of their rest thickness keep the rest step (the rest step's own
 /// margin holds them), thinner ones shrink it in proportion, down to 0.2 of it (five times as many
-/// sub-steps: an inverted or flat cell is reported by the step, not followed forever). A cell
+/// sub-steps: an inverted or flat cell, or one whose volume is not a number, is reported by the
+/// step, not followed forever). A cell
 /// stretched flat is stiffer across than its thickness says, its stiffness there growing with the
 /// area of its faces: a face over twice its rest area divides the thickness by the square root of
 /// its area over twice the rest area (a cell 2.6 times as wide each way and a fifth as thick,

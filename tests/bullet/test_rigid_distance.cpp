@@ -138,6 +138,40 @@ TEST(RigidDistance, ABoxEdgeThroughATriangleBetweenItsCornersPushesItByTheEdgesD
   EXPECT_NEAR(grown_depth, 0.001 + 0.0005 * std::sqrt(2.0), 1e-9);
 }
 
+// An edge across a triangle's plane: the part over the triangle is clipped by the prism's sides,
+// and the deeper end of what is left is the hit (1 cm right triangle in z = 0, the tissue below).
+TEST(RigidDistance, AnEdgeAcrossTheTrianglesPlaneIsClippedToItsPrism) {
+  const double s = 0.01;
+  const Eigen::Vector3d a(0, 0, 0), b(s, 0, 0), c(0, s, 0);  // outward normal +z
+  const auto hit = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to, double thickness = 0.004) {
+    return edge_penetration(RigidEdge{from * s, to * s}, a, b, c, thickness);
+  };
+  // down from x = -0.5 to 0.5 at y = 0.25: over the triangle from x = 0, deepest at its end
+  std::optional<FacePenetration> through = hit({-0.5, 0.25, 0.05}, {0.5, 0.25, -0.05});
+  ASSERT_TRUE(through.has_value());
+  EXPECT_NEAR(through->depth, 0.05 * s, 1e-12);
+  EXPECT_TRUE(through->barycentric.isApprox(Eigen::Vector3d(0.25, 0.5, 0.25), 1e-9)) << through->barycentric.transpose();
+  // steeper, on past the hypotenuse x + y = 1: deepest where it leaves the prism, at x = 0.75
+  through = hit({0.25, 0.25, 0.05}, {1.25, 0.25, -0.15});
+  ASSERT_TRUE(through.has_value());
+  EXPECT_NEAR(through->depth, 0.05 * s, 1e-12);
+  EXPECT_TRUE(through->barycentric.isApprox(Eigen::Vector3d(0.0, 0.75, 0.25), 1e-9)) << through->barycentric.transpose();
+  // the same edge reversed gives the same hit
+  const std::optional<FacePenetration> reversed = hit({1.25, 0.25, -0.15}, {0.25, 0.25, 0.05});
+  ASSERT_TRUE(reversed.has_value());
+  EXPECT_NEAR(reversed->depth, through->depth, 1e-15);
+  // a point (an edge of no length) behind the triangle; a degenerate triangle; an edge beside
+  // the prism; an edge in front of the plane
+  through = hit({0.2, 0.2, -0.1}, {0.2, 0.2, -0.1});
+  ASSERT_TRUE(through.has_value());
+  EXPECT_NEAR(through->depth, 0.1 * s, 1e-12);
+  EXPECT_FALSE(edge_penetration(RigidEdge{Eigen::Vector3d(0.002, 0.002, -0.001), Eigen::Vector3d(0.003, 0.002, -0.001)},
+                                a, b, a, 0.004)
+                   .has_value());
+  EXPECT_FALSE(hit({-0.5, -0.25, -0.05}, {0.5, -0.25, -0.05}).has_value());
+  EXPECT_FALSE(hit({0.1, 0.1, 0.05}, {0.5, 0.2, 0.01}).has_value());
+}
+
 TEST(RigidDistance, OnlyBoxesHaveEdges) {
   EXPECT_TRUE(box_edges(btSphereShape(0.01f), btTransform::getIdentity(), 0.0).empty());
   EXPECT_TRUE(box_edges(btCapsuleShapeZ(0.005f, 0.02f), btTransform::getIdentity(), 0.0).empty());

@@ -3,6 +3,7 @@
 // The explicit stability limit against the body's spectrum (dense eigenvalues of M^-1/2 K M^-1/2)
 // and against what symplectic Euler does just below and just above it.
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -163,7 +164,7 @@ TEST(CompressedStepFactor, FollowsTheThinnestCellAndOnlyTheNeoHookeanLaw) {
 
 // Many cells: the factor is that of the thinnest cell across its thinnest axis, as a brute
 // force over every cell and axis finds it by the definition (stable_time_step.h), for bodies
-// jittered at random, some stretched flat and some with a cell inside out.
+// jittered at random, some stretched flat and some squeezed until cells turn inside out.
 TEST(CompressedStepFactor, IsTheThinnestOfManyCells) {
   const Model model = build_model(neo_hookean_bricks({4, 3, 3})).value();
   const auto by_definition = [&](const Eigen::Matrix3Xd& x) {
@@ -190,18 +191,33 @@ TEST(CompressedStepFactor, IsTheThinnestOfManyCells) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> jitter(-0.003, 0.003);
   int between = 0;  // trials whose factor is neither bound: a cell decides it
+  int inverted = 0, widened = 0;  // trials with a cell inside out, a face over twice its rest area
   for (int trial = 0; trial < 60; ++trial) {
     Eigen::Matrix3Xd x = model.rest_positions;
     if (trial % 3 == 1) x = Eigen::Vector3d(2.2, 1.9, 0.6).asDiagonal() * x;  // stretched flat
+    if (trial % 3 == 2) x = Eigen::Vector3d(1.0, 1.0, 0.3).asDiagonal() * x;  // squeezed: some turn inside out
     for (Eigen::Index n = 0; n < x.cols(); ++n) {
-      for (int k = 0; k < 3; ++k) x(k, n) += (trial % 3 == 2 ? 2.0 : 1.0) * jitter(random);
+      for (int k = 0; k < 3; ++k) x(k, n) += jitter(random);
     }
     SCOPED_TRACE(trial);
     const double factor = compressed_step_factor(model, x);
     EXPECT_NEAR(factor, by_definition(x), 1e-14);
     between += factor > 0.2 && factor < 1.0 ? 1 : 0;
+    bool any_inverted = false, any_widened = false;
+    for (int c = 0; c < model.num_cells(); ++c) {
+      any_inverted = any_inverted || cell_signed_volume(model, x, c) <= 0.0;
+    }
+    any_widened = trial % 3 == 1;  // 2.2 x 1.9 of the rest faces normal to z, before the jitter
+    inverted += any_inverted ? 1 : 0;
+    widened += any_widened ? 1 : 0;
   }
-  EXPECT_GT(between, 20);
+  EXPECT_GT(between, 15);
+  EXPECT_GT(inverted, 0);
+  EXPECT_GT(widened, 0);
+  // a position that is not a number asks for the least factor, as an inverted cell does
+  Eigen::Matrix3Xd lost = model.rest_positions;
+  lost(0, 5) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(compressed_step_factor(model, lost), 0.2);
 }
 
 }  // namespace

@@ -397,7 +397,7 @@ std::optional<FacePenetration> edge_penetration(const RigidEdge& edge, const Eig
   const Eigen::Vector3d normal = cross / twice_area;
   const Eigen::Vector3d corners[3] = {a, b, c};
   const auto deepest = segment_behind_triangle(edge.from, edge.to, corners, normal);
-  if (!deepest || deepest->first <= 0.0 || deepest->first > thickness) return std::nullopt;
+  if (!deepest || !(deepest->first > 0.0 && deepest->first <= thickness)) return std::nullopt;  // NaN too
   return FacePenetration{barycentric_in_plane(deepest->second, a, b, c, normal, twice_area), deepest->first};
 }
 
