@@ -145,6 +145,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   reach.offset = settings.offset;
   std::vector<char> touched;
   for (auto& [object, last] : last_impulses_) last.seen = false;
+  for (auto& [object, last] : last_edge_impulses_) last.seen = false;
   for (auto& [object, last] : last_cores_) last.seen = false;
   for (RigidTrack& track : tracks) {
     const btCollisionShape& shape = *track.object->getCollisionShape();
@@ -184,7 +185,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     }
     LastImpulses& last = last_impulses_[track.object];
     last.seen = true;
-    last.by_vertex.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), Eigen::Vector3d::Zero());
+    last.by_key.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), Eigen::Vector3d::Zero());
     apply_points(track, true, &last);
     refresh_moved();
     // a tool that reaches deeper than half a cell behind a triangle is not passing between its
@@ -228,6 +229,9 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   // a body that left the world (or is a round tool now) keeps nothing: another may take its address
   for (auto entry = last_impulses_.begin(); entry != last_impulses_.end();) {
     entry = entry->second.seen ? std::next(entry) : last_impulses_.erase(entry);
+  }
+  for (auto entry = last_edge_impulses_.begin(); entry != last_edge_impulses_.end();) {
+    entry = entry->second.seen ? std::next(entry) : last_edge_impulses_.erase(entry);
   }
   for (auto entry = last_cores_.begin(); entry != last_cores_.end();) {
     entry = entry->second.seen ? std::next(entry) : last_cores_.erase(entry);
@@ -273,8 +277,15 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
     if (!deepest) continue;
     const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
     add_face_point(t, deepest->barycentric, -deepest->depth * normal);
+    points_.back().key = t;  // its impulse starts the next sub-step's at this triangle
   }
-  apply_points(track);
+  // a resting box needs about the same impulse at its edges every sub-step, as at its vertices:
+  // started from zero, four sweeps left the tissue beside a tilted box on frictionless tissue
+  // trembling (kinetic energy 2e-4 J after 5 s; 1.6e-5 J with the warm start)
+  LastImpulses& last = last_edge_impulses_[track.object];
+  last.seen = true;
+  last.by_key.resize(static_cast<std::size_t>(body_.surface_triangles_.cols()), Eigen::Vector3d::Zero());
+  apply_points(track, true, &last);
   refresh_moved();
 }
 
@@ -389,7 +400,7 @@ std::vector<char> ContactProjector::vertices_held_by(const btCollisionObject* ob
 
 void ContactProjector::add_vertex_point(int vertex, const Eigen::Vector3d& push) {
   ContactPoint& point = new_point(push);
-  point.vertex = vertex;
+  point.key = vertex;
   add_vertex(point, vertex, 1.0);
 }
 
@@ -531,8 +542,8 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
   };
   if (last != nullptr) {
     for (ContactPoint& point : points_) {
-      if (point.inverse_mass <= 0.0 || point.vertex < 0) continue;
-      deliver(point, admissible(last->by_vertex[static_cast<std::size_t>(point.vertex)], point.normal));
+      if (point.inverse_mass <= 0.0 || point.key < 0) continue;
+      deliver(point, admissible(last->by_key[static_cast<std::size_t>(point.key)], point.normal));
     }
   }
   const double tolerance = kSweepTolerance * body_.model_.cell_size.minCoeff() / body_.sub_step_;
@@ -559,12 +570,12 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
 }
 
 void ContactProjector::remember(LastImpulses& last) const {
-  for (const int vertex : last.vertices) last.by_vertex[static_cast<std::size_t>(vertex)].setZero();
-  last.vertices.clear();
+  for (const int key : last.keys) last.by_key[static_cast<std::size_t>(key)].setZero();
+  last.keys.clear();
   for (const ContactPoint& point : points_) {
-    if (point.vertex < 0 || point.impulse.isZero()) continue;
-    last.by_vertex[static_cast<std::size_t>(point.vertex)] = point.impulse;
-    last.vertices.push_back(point.vertex);
+    if (point.key < 0 || point.impulse.isZero()) continue;
+    last.by_key[static_cast<std::size_t>(point.key)] = point.impulse;
+    last.keys.push_back(point.key);
   }
 }
 

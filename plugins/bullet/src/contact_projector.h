@@ -48,7 +48,9 @@ class ContactProjector {
     double lift = 0.0;                  // the projection's multiplier so far [kg m]
     Eigen::Vector3d impulse{0, 0, 0};   // the tissue's impulse at it so far [N s]
     double inverse_mass = 0.0;          // [1/kg]
-    int vertex = -1;                    // the surface vertex of a vertex point, else -1
+    int key = -1;                       // where its impulse is kept for the next sub-step: the
+                                        // surface vertex of a vertex point, the triangle of a box
+                                        // edge's; -1: not kept
     double share = 0.0;                 // the weights on the nodes it moves, summed: an impulse J
                                         // there gives them the momentum share J
     int first_node = 0, end_node = 0;
@@ -69,13 +71,13 @@ class ContactProjector {
   void add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push);
   ContactPoint& new_point(const Eigen::Vector3d& push);
   void add_vertex(ContactPoint& point, int vertex, double scale);
-  // The impulses a rigid body's vertex points took in the last sub-step, by surface vertex: each
-  // starts the next sub-step's sweeps from it (warm start), as a resting contact needs about the
-  // same impulse every sub-step.
+  // The impulses a rigid body's vertex points (or box-edge points) took in the last sub-step, by
+  // their key (surface vertex, or triangle): each starts the next sub-step's sweeps from it (warm
+  // start), as a resting contact needs about the same impulse every sub-step.
   struct LastImpulses {
-    std::vector<Eigen::Vector3d> by_vertex;  // [N s], zero where no point was
-    std::vector<int> vertices;               // where it is not zero
-    bool seen = false;                       // in the current resolve()
+    std::vector<Eigen::Vector3d> by_key;  // [N s], zero where no point was
+    std::vector<int> keys;                // where it is not zero
+    bool seen = false;                    // in the current resolve()
   };
   // count: whether the points count as contacts of the sub-step (RigidTrack::substep_contacts);
   // last: the track's impulses of the last sub-step, for vertex points
@@ -127,6 +129,7 @@ class ContactProjector {
   };
   std::vector<PointNode> point_nodes_;
   std::map<const btCollisionObject*, LastImpulses> last_impulses_;
+  std::map<const btCollisionObject*, LastImpulses> last_edge_impulses_;  // of box-edge points
   std::map<const btCollisionObject*, LastCore> last_cores_;
 };
 
