@@ -76,6 +76,22 @@ double largest_spread(const std::vector<int>& offset, const std::vector<double>&
   return spread;
 }
 
+// Whether any corner of triangle t is flagged in `flags` (per surface vertex; empty: none is).
+bool any_corner(const std::vector<char>& flags, const Eigen::Matrix3Xi& triangles, int t) {
+  if (flags.empty()) return false;
+  for (int k = 0; k < 3; ++k) {
+    if (flags[static_cast<std::size_t>(triangles(k, t))] != 0) return true;
+  }
+  return false;
+}
+
+// A rigid body that left the world (or changed its kind of contact) keeps nothing in `kept`:
+// another may take its address.
+template <class Map>
+void drop_unseen(Map& kept) {
+  for (auto entry = kept.begin(); entry != kept.end();) entry = entry->second.seen ? std::next(entry) : kept.erase(entry);
+}
+
 }  // namespace
 
 ContactProjector::ContactProjector(SoftBody& body)
@@ -202,16 +218,8 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     // already met this body is held by them)
     points_.clear();
     for (const int t : window_.triangles()) {
-      if (touched[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
-          touched[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
-          touched[static_cast<std::size_t>(body_.surface_triangles_(2, t))]) {
-        continue;
-      }
-      if (!held.empty() && (held[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
-                            held[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
-                            held[static_cast<std::size_t>(body_.surface_triangles_(2, t))])) {
-        continue;  // a point of it would move held nodes too
-      }
+      if (any_corner(touched, body_.surface_triangles_, t)) continue;
+      if (any_corner(held, body_.surface_triangles_, t)) continue;  // a point of it would move held nodes too
       const Eigen::Vector3d a = body_.surface_positions_.col(body_.surface_triangles_(0, t));
       const Eigen::Vector3d b = body_.surface_positions_.col(body_.surface_triangles_(1, t));
       const Eigen::Vector3d c = body_.surface_positions_.col(body_.surface_triangles_(2, t));
@@ -226,16 +234,9 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     apply_points(track);
     refresh_moved();
   }
-  // a body that left the world (or is a round tool now) keeps nothing: another may take its address
-  for (auto entry = last_impulses_.begin(); entry != last_impulses_.end();) {
-    entry = entry->second.seen ? std::next(entry) : last_impulses_.erase(entry);
-  }
-  for (auto entry = last_edge_impulses_.begin(); entry != last_edge_impulses_.end();) {
-    entry = entry->second.seen ? std::next(entry) : last_edge_impulses_.erase(entry);
-  }
-  for (auto entry = last_cores_.begin(); entry != last_cores_.end();) {
-    entry = entry->second.seen ? std::next(entry) : last_cores_.erase(entry);
-  }
+  drop_unseen(last_impulses_);
+  drop_unseen(last_edge_impulses_);
+  drop_unseen(last_cores_);
 }
 
 void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held) {
@@ -267,7 +268,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
     const Eigen::Vector3d c = body_.surface_positions_.col(static_cast<Eigen::Index>(corner(2)));
     const Eigen::AlignedBox3d triangle_box(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c));
     if (!near_any.intersects(triangle_box)) continue;
-    if (!held.empty() && (held[corner(0)] || held[corner(1)] || held[corner(2)])) continue;  // would move held nodes
+    if (any_corner(held, body_.surface_triangles_, t)) continue;  // a point of it would move held nodes too
     std::optional<FacePenetration> deepest;
     for (std::size_t e = 0; e < near_edges.size(); ++e) {
       if (!near_edge[e].intersects(triangle_box)) continue;
@@ -323,11 +324,7 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
       const double gap = contact.signed_distance - reach;
       if (gap >= -tolerance) continue;
       const int t = contact.surface.triangle;
-      if (!held.empty() && (held[static_cast<std::size_t>(body_.surface_triangles_(0, t))] ||
-                            held[static_cast<std::size_t>(body_.surface_triangles_(1, t))] ||
-                            held[static_cast<std::size_t>(body_.surface_triangles_(2, t))])) {
-        continue;
-      }
+      if (any_corner(held, body_.surface_triangles_, t)) continue;
       // a core found deep inside (a tool placed in the tissue) comes out over several sub-steps:
       // pushing the surface a cell in one crushed the cells under it
       add_face_point(t, contact.surface.barycentric, -std::min(-gap, budget) * contact.normal);
