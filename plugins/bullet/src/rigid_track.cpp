@@ -77,6 +77,8 @@ void advance_track(RigidTrack& track, double t, double dt, double kinematic_pose
   btTransformUtil::integrateTransform(track.transform, to_bt(track.linear_velocity), to_bt(track.angular_velocity),
                                       static_cast<btScalar>(dt), next);
   track.transform = next;
+  track.moved_linear_velocity = track.linear_velocity;
+  track.moved_angular_velocity = track.angular_velocity;
 }
 
 void finish_substep(RigidTrack& track) {
@@ -84,21 +86,22 @@ void finish_substep(RigidTrack& track) {
   track.angular_impulse += track.substep_angular_impulse;
 }
 
-void hand_over(RigidTrack& track, double step_length) {
-  if (!track.dynamic || (track.impulse.isZero() && track.angular_impulse.isZero())) return;
+PendingVelocity hand_over(RigidTrack& track, double step_length) {
+  if (!track.dynamic || (track.impulse.isZero() && track.angular_impulse.isZero())) return {};
   track.body->activate(true);
   if (!track.free_flight) {
     track.body->applyCentralImpulse(to_bt(track.impulse));
     track.body->applyTorqueImpulse(to_bt(track.angular_impulse));
-    return;
+    return {};
   }
-  const btVector3 linear = to_bt(track.linear_velocity);
-  const btVector3 angular = to_bt(track.angular_velocity);
+  const btVector3 linear = to_bt(track.moved_linear_velocity);
+  const btVector3 angular = to_bt(track.moved_angular_velocity);
   btTransform start;
   btTransformUtil::integrateTransform(track.transform, -linear, -angular, static_cast<btScalar>(step_length), start);
   track.body->setCenterOfMassTransform(start);
   track.body->setLinearVelocity(linear - track.body->getGravity() * static_cast<btScalar>(step_length));
   track.body->setAngularVelocity(angular);
+  return {track.linear_velocity - track.moved_linear_velocity, track.angular_velocity - track.moved_angular_velocity};
 }
 
 }  // namespace cubespring::bullet

@@ -30,6 +30,10 @@ struct RigidTrack {
   Eigen::Vector3d angular_impulse{0, 0, 0};  ///< about the centre of mass [N m s]
   Eigen::Vector3d substep_impulse{0, 0, 0};
   Eigen::Vector3d substep_angular_impulse{0, 0, 0};
+  /// A dynamic body's velocities when it moved in the last sub-step, before that sub-step's
+  /// impulses (its motion shows them only in the next one)
+  Eigen::Vector3d moved_linear_velocity{0, 0, 0};
+  Eigen::Vector3d moved_angular_velocity{0, 0, 0};
   int substep_contacts = 0;
 
   Eigen::Vector3d centre() const;
@@ -54,10 +58,20 @@ void advance_track(RigidTrack& track, double t, double dt, double kinematic_pose
 /// Adds the sub-step's impulses to the step's.
 void finish_substep(RigidTrack& track);
 
+/// What the tissue's impulses in a step's last sub-step changed of a body's velocities [m/s,
+/// rad/s] and its motion has not yet taken.
+struct PendingVelocity {
+  Eigen::Vector3d linear{0, 0, 0};
+  Eigen::Vector3d angular{0, 0, 0};
+};
+
 /// At the end of the soft sub-steps, gives a dynamic body the tissue's impulses over the step: a
 /// free body also takes the motion it had in the sub-steps, so that Bullet's own step (v += g T,
 /// then x += v T) ends where they did (the impulse alone misses by a little each step and makes a
 /// resting body rock); a jointed one only the impulses, its joints being Bullet's to solve.
-void hand_over(RigidTrack& track, double step_length);
+/// A free body leaves the step with the velocity it moved at in the last sub-step, which is what
+/// its motion shows (a body resting on tissue: 0, where the velocity after the sub-step's
+/// impulses reads about -g dt); the returned change is for the next step to add back first.
+PendingVelocity hand_over(RigidTrack& track, double step_length);
 
 }  // namespace cubespring::bullet

@@ -106,10 +106,41 @@ void World::internalSingleStepSimulation(btScalar timeStep) {
   const double step = static_cast<double>(timeStep);
   const bool inside_call = kinematic_elapsed_ + step <= kinematic_span_ * (1 + 1e-6);
   const double kinematic_pose_time = inside_call ? kinematic_span_ - kinematic_elapsed_ : step;
+  add_carried_velocities();
   for (SoftBody* body : soft_bodies_) advance_soft_body(*body, step, kinematic_pose_time);
   btDiscreteDynamicsWorld::internalSingleStepSimulation(timeStep);
+  note_velocities_left();
   time_ += step;
   kinematic_elapsed_ += step;
+}
+
+// Both look the bodies up among the world's objects, so that one removed since is not touched.
+void World::add_carried_velocities() {
+  if (carried_velocities_.empty()) return;
+  for (int i = 0; i < getNumCollisionObjects(); ++i) {
+    const auto carried = carried_velocities_.find(getCollisionObjectArray()[i]);
+    btRigidBody* body = btRigidBody::upcast(getCollisionObjectArray()[i]);
+    if (carried == carried_velocities_.end() || body == nullptr) continue;
+    const CarriedVelocity& change = carried->second;
+    if (body->getLinearVelocity() != change.left_linear || body->getAngularVelocity() != change.left_angular ||
+        !(body->getCenterOfMassTransform() == change.left_transform))
+      continue;  // the user set its velocity or moved it: theirs stands
+    body->setLinearVelocity(body->getLinearVelocity() + to_bt(change.linear));
+    body->setAngularVelocity(body->getAngularVelocity() + to_bt(change.angular));
+  }
+  carried_velocities_.clear();
+}
+
+void World::note_velocities_left() {
+  if (carried_velocities_.empty()) return;
+  for (int i = 0; i < getNumCollisionObjects(); ++i) {
+    const auto carried = carried_velocities_.find(getCollisionObjectArray()[i]);
+    const btRigidBody* body = btRigidBody::upcast(getCollisionObjectArray()[i]);
+    if (carried == carried_velocities_.end() || body == nullptr) continue;
+    carried->second.left_linear = body->getLinearVelocity();
+    carried->second.left_angular = body->getAngularVelocity();
+    carried->second.left_transform = body->getCenterOfMassTransform();
+  }
 }
 
 void World::saveKinematicState(btScalar timeStep) {
@@ -190,6 +221,13 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   std::vector<int> anchor_track(body.anchors_.size(), -1);
   for (std::size_t a = 0; a < body.anchors_.size(); ++a) {
     if (body.anchors_[a]) anchor_track[a] = track_of(tracks, body.anchors_[a]->body, constrained_);
+  }
+  // a body that another soft body's sub-steps already moved in this step starts with what they left
+  for (RigidTrack& track : tracks) {
+    const auto carried = carried_velocities_.find(track.object);
+    if (carried == carried_velocities_.end()) continue;
+    track.linear_velocity += carried->second.linear;
+    track.angular_velocity += carried->second.angular;
   }
 
   // a world step so long against the body's sub-step that it would run for hours (or pass int)
@@ -301,7 +339,11 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   }
 
   // hand the dynamic bodies the tissue's impulses (and the motion they had in the sub-steps)
-  for (RigidTrack& track : tracks) hand_over(track, step_length);
+  for (RigidTrack& track : tracks) {
+    const PendingVelocity pending = hand_over(track, step_length);
+    if (!pending.linear.isZero() || !pending.angular.isZero())
+      carried_velocities_[track.object] = {pending.linear, pending.angular, {}, {}, {}};
+  }
 }
 
 }  // namespace cubespring::bullet

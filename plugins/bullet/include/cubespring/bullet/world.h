@@ -35,6 +35,10 @@ struct ContactWrench {
 /// every soft body over the step in sub-steps, against the rigid bodies that Bullet's broadphase
 /// finds near it (dynamic ones integrated alongside, so contacts stay stable), then gives those
 /// bodies the contact impulses and runs Bullet's own step. Method names follow Bullet's.
+/// A free body touching tissue reads, between steps, the velocity it moved at in the step's last
+/// sub-step, as Bullet's own contacts leave it (0 for a body at rest on the tissue); the tissue's
+/// push in that sub-step is kept for the next step, and dropped if the user sets the body's
+/// velocity or moves it.
 class ContactProjector;
 
 class World : public btDiscreteDynamicsWorld {
@@ -65,6 +69,7 @@ class World : public btDiscreteDynamicsWorld {
 
  private:
   void advance_soft_body(SoftBody& body, double time_step, double kinematic_pose_time);
+  void add_carried_velocities();
   static void drive_anchors(SoftBody& body, std::vector<struct RigidTrack>& tracks,
                             const std::vector<int>& anchor_track, double dt);
   static bool has_held_anchors(const SoftBody& body, const std::vector<struct RigidTrack>& tracks,
@@ -80,6 +85,19 @@ class World : public btDiscreteDynamicsWorld {
   std::set<const btCollisionObject*> constrained_;  // bodies a joint holds, this step
   // each soft body's contact resolution, kept from sub-step to sub-step with its per-node buffers
   std::map<const SoftBody*, std::unique_ptr<ContactProjector>> projectors_;
+  // A free dynamic body's velocity change from the tissue's push in the last sub-step of a step,
+  // which its motion has not shown yet and so Bullet's reading of its velocity leaves out
+  // (rigid_track.h, hand_over). The next step adds it back first, unless the user has set the
+  // body's velocity or moved it in between (they then differ from what the step left).
+  struct CarriedVelocity {
+    Eigen::Vector3d linear{0, 0, 0};   // [m/s]
+    Eigen::Vector3d angular{0, 0, 0};  // [rad/s]
+    btVector3 left_linear{0, 0, 0};    // the body's velocities when the step ended
+    btVector3 left_angular{0, 0, 0};
+    btTransform left_transform = btTransform::getIdentity();
+  };
+  void note_velocities_left();
+  std::map<const btCollisionObject*, CarriedVelocity> carried_velocities_;
   double time_ = 0.0;
   // the current stepSimulation() call: its length, and how much of it the internal steps took
   double kinematic_span_ = 0.0;
