@@ -102,7 +102,7 @@ TEST_P(InstrumentOnTissue, ComesToRestCarriedByTheTissue) {
   // is dropped): picked up 10 cm, it falls as a free body; thrown up, it rises as one
   const btScalar fall = btScalar(-9.81 * GetParam().step);
   btTransform picked_up = box->getCenterOfMassTransform();
-  picked_up.getOrigin() += btVector3(0, 0, 0.1);
+  picked_up.getOrigin() += btVector3(0, 0, btScalar(0.1));
   box->setCenterOfMassTransform(picked_up);
   const btVector3 left = box->getLinearVelocity();
   scene.run(GetParam().step, GetParam().step);

@@ -341,8 +341,10 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   // hand the dynamic bodies the tissue's impulses (and the motion they had in the sub-steps)
   for (RigidTrack& track : tracks) {
     const PendingVelocity pending = hand_over(track, step_length);
-    if (!pending.linear.isZero() || !pending.angular.isZero())
-      carried_velocities_[track.object] = {pending.linear, pending.angular, {}, {}, {}};
+    if (pending.linear.isZero() && pending.angular.isZero()) continue;
+    CarriedVelocity& carried = carried_velocities_[track.object];
+    carried.linear = pending.linear;
+    carried.angular = pending.angular;
   }
 }
 
