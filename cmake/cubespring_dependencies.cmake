@@ -48,6 +48,11 @@ if(CUBESPRING_WITH_OSMESA)
   cubespring_require(PNG_FOUND "libpng" "libpng-dev" "CUBESPRING_WITH_OSMESA=ON (PNG frames)")
 endif()
 
+if(CUBESPRING_WITH_ASSIMP AND CUBESPRING_WITH_BULLET AND CUBESPRING_WITH_OSMESA)
+  find_package(nlohmann_json 3 QUIET)
+  cubespring_require(nlohmann_json_FOUND "nlohmann_json" "nlohmann-json3-dev" "cubespring::scene (scene files)")
+endif()
+
 if(CUBESPRING_BUILD_APPS)
   if(NOT CUBESPRING_WITH_ASSIMP)
     message(FATAL_ERROR "cubespring: the command-line tool loads mesh files (voxelize): "

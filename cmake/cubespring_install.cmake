@@ -38,6 +38,13 @@ if(TARGET cubespring_bullet)
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   install(DIRECTORY plugins/bullet/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
+if(TARGET cubespring_scene)
+  install(TARGETS cubespring_scene EXPORT cubespringTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY scenes/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 if(TARGET cubespring_app)
   install(TARGETS cubespring_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()

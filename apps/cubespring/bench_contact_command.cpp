@@ -29,7 +29,6 @@
 #include "cubespring/voxelize.h"
 #include "json_output.h"
 #include "number_checks.h"
-#include "scene.h"
 
 namespace cubespring::app {
 namespace {
@@ -56,11 +55,7 @@ std::vector<double> parse_numbers(const std::string& text, const std::string& fl
 }
 
 // the scenes' default tissue (nu 0.45, 1060 kg/m^3, 40/s) at the 5 kPa
-Material tissue() {
-  Material material = default_tissue();
-  material.young_modulus = 5e3;
-  return material;
-}
+Material tissue() { return soft_tissue(5e3); }
 
 // A Bullet world with one soft body on the ground (the plane z = 0), owning what it makes.
 class Bench {

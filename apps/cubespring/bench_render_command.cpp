@@ -23,7 +23,7 @@
 #include "default_scene.h"
 #include "json_output.h"
 #include "number_checks.h"
-#include "scene_frames.h"
+#include "cubespring/scene/scene_frames.h"
 #include "scene_run.h"
 
 namespace cubespring::app {
@@ -84,12 +84,12 @@ Result<std::vector<Size>> parse_picture_sizes(const std::string& text) {
 }
 
 // Draws and writes `frames` pictures of the world as it is, timing each part.
-Result<RenderTiming> time_render(const Scene& scene, SceneWorld& world, const Eigen::Matrix3Xd& rest, Size size,
+Result<RenderTiming> time_render(const scene::Scene& scene, scene::SceneWorld& world, const Eigen::Matrix3Xd& rest, Size size,
                                  int frames, const std::filesystem::path& folder) {
-  Scene sized = scene;
+  scene::Scene sized = scene;
   sized.render.width = size.width;
   sized.render.height = size.height;
-  Result<SceneFrames> made = SceneFrames::create(sized);
+  Result<scene::SceneFrames> made = scene::SceneFrames::create(sized);
   if (!made) return made.status();
   made->set_rest(rest);
   Result<Image> image = made->render(world, 0.0);  // the first frame builds what later ones reuse
@@ -113,20 +113,20 @@ Result<RenderTiming> time_render(const Scene& scene, SceneWorld& world, const Ei
 
 int run(const BenchRenderOptions& o) {
   Result<std::vector<Size>> sizes = parse_picture_sizes(o.sizes);
-  Result<Scene> loaded = sizes ? load_scene_or_default(o.scene) : Result<Scene>(sizes.status());
+  Result<scene::Scene> loaded = sizes ? load_scene_or_default(o.scene) : Result<scene::Scene>(sizes.status());
   if (!loaded) {
     std::cerr << "error: " << loaded.message() << "\n";
     return sizes ? 1 : 2;
   }
-  const Scene& scene = *loaded;
-  Result<std::unique_ptr<SceneWorld>> built = SceneWorld::create(scene);
-  Status ready = built ? settle(**built, scene) : built.status();
+  const scene::Scene& scene = *loaded;
+  Result<std::unique_ptr<scene::SceneWorld>> built = scene::SceneWorld::create(scene);
+  Status ready = built ? scene::settle(**built, scene) : built.status();
   if (!ready) {
     std::cerr << "error: " << ready.message() << "\n";
     return 1;
   }
-  SceneWorld& world = **built;
-  const Eigen::Matrix3Xd rest = SceneFrames::organ_vertices(world);
+  scene::SceneWorld& world = **built;
+  const Eigen::Matrix3Xd rest = scene::SceneFrames::organ_vertices(world);
 
   // the story, or its first seconds, as `run` plays it
   const double story = o.seconds > 0 ? o.seconds : scene.duration;
@@ -164,7 +164,7 @@ int run(const BenchRenderOptions& o) {
   }
   fs::remove_all(folder, error);
 
-  const OrganSummary& organ = world.summary();
+  const scene::OrganSummary& organ = world.summary();
   if (o.json) {
     nlohmann::json out;
     out["machine"] = cpu_name();

@@ -18,10 +18,10 @@ std::string data_dir() {
 #endif
 }
 
-Result<Scene> load_scene_or_default(const std::string& path) {
+Result<scene::Scene> load_scene_or_default(const std::string& path) {
   namespace fs = std::filesystem;
   const std::string data = data_dir();
-  if (!path.empty()) return load_scene(path, data);
+  if (!path.empty()) return scene::load_scene(path, data);
   const std::string default_path = (fs::path(data) / "scenes" / "liver_probe.json").string();
   std::error_code ignored;
   if (data.empty() || !fs::is_regular_file(default_path, ignored)) {
@@ -29,7 +29,7 @@ Result<Scene> load_scene_or_default(const std::string& path) {
                          (data.empty() ? std::string("scenes/liver_probe.json") : default_path) +
                          " was not found; give a scene file, or set CUBESPRING_DATA_DIR to cubespring's data folder");
   }
-  return load_scene(default_path, data);
+  return scene::load_scene(default_path, data);
 }
 
 }  // namespace cubespring::app

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "scene.h"
+#include "cubespring/scene/scene.h"
 
 namespace cubespring::app {
 
@@ -14,6 +14,6 @@ std::string data_dir();
 
 /// Reads the scene at `path`, or the default scene (data/scenes/liver_probe.json) when `path` is
 /// empty. Errors say which file was missing and how to point at the data folder.
-Result<Scene> load_scene_or_default(const std::string& path);
+Result<scene::Scene> load_scene_or_default(const std::string& path);
 
 }  // namespace cubespring::app

@@ -26,12 +26,12 @@ struct RunCommandOptions {
 
 int run(const RunCommandOptions& options) {
   namespace fs = std::filesystem;
-  Result<Scene> loaded = load_scene_or_default(options.scene);
+  Result<scene::Scene> loaded = load_scene_or_default(options.scene);
   if (!loaded) {
     std::cerr << "error: " << loaded.message() << "\n";
     return 1;
   }
-  Scene scene = std::move(loaded).value();
+  scene::Scene scene = std::move(loaded).value();
   if (options.frames > 0) scene.frames = options.frames;  // same duration, fewer or more pictures
   if (!options.out.empty()) scene.output = options.out;
   if (options.width > 0) scene.render.width = options.width;

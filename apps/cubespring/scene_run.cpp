@@ -15,8 +15,8 @@
 #include "cubespring/render/image.h"
 #include "force_plot.h"
 #include "progress_bar.h"
-#include "scene_frames.h"
-#include "scene_world.h"
+#include "cubespring/scene/scene_frames.h"
+#include "cubespring/scene/scene_world.h"
 
 namespace cubespring::app {
 
@@ -45,8 +45,8 @@ void remove_stale_frames(const fs::path& folder, int frames) {
   }
 }
 
-void print_summary(const Scene& scene, const SceneWorld& world, int steps, int frames) {
-  const OrganSummary& s = world.summary();
+void print_summary(const scene::Scene& scene, const scene::SceneWorld& world, int steps, int frames) {
+  const scene::OrganSummary& s = world.summary();
   std::fprintf(stderr, "scene %s: organ %s, %d cells of %.1f mm, %d nodes (%d fixed), sub-step %.3f ms\n",
                scene.source.c_str(), scene.organ.mesh.c_str(), s.cells, 1000.0 * s.cell_size, s.nodes, s.fixed_nodes,
                1000.0 * s.sub_step);
@@ -70,7 +70,7 @@ std::string seconds(double t) {
 
 
 // One CSV row per tool for the step that ended at t, and the magnitudes for the plot.
-void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<ForceSeries>& series) {
+void record_forces(scene::SceneWorld& world, double t, std::ostream& csv, std::vector<ForceSeries>& series) {
   const auto number = [](double value) {
     char text[32];
     std::snprintf(text, sizeof text, "%.9g", value);
@@ -79,7 +79,7 @@ void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<F
   char time[32];
   std::snprintf(time, sizeof time, "%.6f", t);
   for (std::size_t i = 0; i < world.tools().size(); ++i) {
-    const SceneTool& tool = world.tools()[i];
+    const scene::SceneTool& tool = world.tools()[i];
     const bullet::ContactWrench w = world.world().getContactWrench(tool.body.get());
     // the plugin gives the torque about the collision body's origin; the CSV's is about the tip
     const Eigen::Isometry3d pose = world.tool_pose(tool);
@@ -94,25 +94,13 @@ void record_forces(SceneWorld& world, double t, std::ostream& csv, std::vector<F
 
 }  // namespace
 
-Status settle(SceneWorld& world, const Scene& scene) {
-  const int steps = static_cast<int>(std::lround(scene.settle_time / scene.time_step));
-  world.place_tools(0.0);
-  for (int n = 0; n < steps; ++n) {
-    if (Status s = world.step(scene.time_step); !s) {
-      return Status::error(s.message() + " (while settling, " + seconds(scene.settle_time - n * scene.time_step) +
-                           " before t = 0)");
-    }
-  }
-  return {};
-}
-
-Result<RunOutput> run_scene(const Scene& scene) {
-  Result<std::unique_ptr<SceneWorld>> built = SceneWorld::create(scene);
+Result<RunOutput> run_scene(const scene::Scene& scene) {
+  Result<std::unique_ptr<scene::SceneWorld>> built = scene::SceneWorld::create(scene);
   if (!built) return built.status();
-  SceneWorld& world = **built;
-  Result<SceneFrames> made = SceneFrames::create(scene);
+  scene::SceneWorld& world = **built;
+  Result<scene::SceneFrames> made = scene::SceneFrames::create(scene);
   if (!made) return made.status();
-  SceneFrames& frames = *made;
+  scene::SceneFrames& frames = *made;
 
   const double dt = scene.time_step;
   const int steps = static_cast<int>(std::lround(scene.duration / dt));
@@ -134,8 +122,8 @@ Result<RunOutput> run_scene(const Scene& scene) {
   if (!csv) return Status::error("cannot write " + output.csv);
   csv << kToolForceCsvHeader << '\n';
 
-  if (Status s = settle(world, scene); !s) return s;
-  frames.set_rest(SceneFrames::organ_vertices(world));
+  if (Status s = scene::settle(world, scene); !s) return s;
+  frames.set_rest(scene::SceneFrames::organ_vertices(world));
 
   std::vector<ForceSeries> series(world.tools().size());
   for (std::size_t i = 0; i < series.size(); ++i) series[i].name = world.tools()[i].name;

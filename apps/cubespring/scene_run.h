@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cubespring/result.h"
-#include "scene.h"
-#include "scene_world.h"
+#include "cubespring/scene/scene.h"
+#include "cubespring/scene/scene_world.h"
 
 namespace cubespring::app {
 
@@ -21,11 +21,7 @@ struct RunOutput {
 
 /// Runs the scene; progress and a summary of the organ go to stderr. Errors name what failed
 /// (a mesh, the output folder, an unstable organ and when).
-Result<RunOutput> run_scene(const Scene& scene);
-
-/// Lets the organ come to rest on the table for scene.settle_time before the story starts, the
-/// tools held at their first pose. An error when the organ goes unstable, with when.
-Status settle(SceneWorld& world, const Scene& scene);
+Result<RunOutput> run_scene(const scene::Scene& scene);
 
 /// The header of tool_forces.csv (docs/scene-format.md).
 extern const char* const kToolForceCsvHeader;

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <utility>
 
-namespace cubespring::app {
+namespace cubespring::scene {
 namespace {
 
 using nlohmann::json;
@@ -197,4 +197,4 @@ Result<std::vector<JsonFields>> JsonFields::objects(const std::string& key) cons
   return elements;
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -14,7 +14,7 @@
 #include "cubespring/result.h"
 #include "json_lines.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 class JsonFields {
  public:
@@ -65,4 +65,4 @@ class JsonFields {
   std::string where_;
 };
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

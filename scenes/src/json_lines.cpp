@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-namespace cubespring::app {
+namespace cubespring::scene {
 namespace {
 
 using nlohmann::json;
@@ -196,4 +196,4 @@ Result<JsonWithLines> parse_json_with_lines(const std::string& text, const std::
   return out;
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -11,7 +11,7 @@
 
 #include "cubespring/result.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 /// A parsed JSON document and where its values are in the text.
 /// How deep objects and arrays may nest in a document parse_json_with_lines() takes.
@@ -34,4 +34,4 @@ Result<JsonWithLines> parse_json_with_lines(const std::string& text, const std::
 /// `parent` + "/" + `key`, with '~' and '/' escaped as JSON pointers require.
 std::string child_pointer(const std::string& parent, const std::string& key);
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "scene.h"
+#include "cubespring/scene/scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "json_fields.h"
 #include "json_lines.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 namespace {
 
 // A number as a message shows it (6 significant digits).
@@ -415,4 +415,4 @@ Result<Scene> load_scene(const std::string& path, const std::string& data_dir) {
   return parse_scene(text.str(), context);
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "scene_frames.h"
+#include "cubespring/scene/scene_frames.h"
 
 #include <utility>
 
@@ -8,9 +8,9 @@
 #include "cubespring/render/colour_map.h"
 #include "cubespring/render/wireframe.h"
 #include "cubespring/strain.h"
-#include "tool_motion.h"
+#include "cubespring/scene/tool_motion.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 namespace {
 
 const Eigen::Vector3f kTissue(0.55f, 0.16f, 0.13f);   // liver red, for colour_map "none"
@@ -95,4 +95,4 @@ Result<Image> SceneFrames::render(SceneWorld& world, double t) {
   return renderer_.end_frame();
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -1,16 +1,19 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "scene_world.h"
+#include "cubespring/scene/scene_world.h"
 
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <sstream>
+#include <string>
 
 #include "cubespring/mesh/load_mesh.h"
+#include "cubespring/scene/tool_motion.h"
 #include "cubespring/voxelize.h"
-#include "tool_motion.h"
 #include "tool_shapes.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 namespace {
 
 btVector3 to_bt(const Eigen::Vector3d& v) {
@@ -208,4 +211,17 @@ Eigen::Isometry3d SceneWorld::tool_pose(const SceneTool& tool) const {
   return to_eigen(tool.body->getWorldTransform()) * tool.shape_offset.inverse();
 }
 
-}  // namespace cubespring::app
+Status settle(SceneWorld& world, const Scene& scene) {
+  const int steps = static_cast<int>(std::lround(scene.settle_time / scene.time_step));
+  world.place_tools(0.0);
+  for (int n = 0; n < steps; ++n) {
+    if (Status s = world.step(scene.time_step); !s) {
+      char before[32];
+      std::snprintf(before, sizeof before, "%.3f s", scene.settle_time - n * scene.time_step);
+      return Status::error(s.message() + " (while settling, " + before + " before t = 0)");
+    }
+  }
+  return {};
+}
+
+}  // namespace cubespring::scene

@@ -1,10 +1,10 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "tool_motion.h"
+#include "cubespring/scene/tool_motion.h"
 
 #include <algorithm>
 
-namespace cubespring::app {
+namespace cubespring::scene {
 namespace {
 
 Eigen::Isometry3d pose_of(const Eigen::Vector3d& position, const Eigen::Quaterniond& orientation) {
@@ -29,4 +29,4 @@ Eigen::Isometry3d pose_at(const std::vector<Keyframe>& keyframes, double t) {
   return pose_of((1.0 - s) * a.position + s * b.position, a.orientation.slerp(s, b.orientation));
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

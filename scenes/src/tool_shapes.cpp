@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 TriangleMesh capsule_mesh(double radius, double length, int around, int cap_rings) {
   constexpr double kPi = 3.14159265358979323846;
@@ -49,4 +49,4 @@ TriangleMesh capsule_mesh(double radius, double length, int around, int cap_ring
   return mesh;
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -5,10 +5,10 @@
 
 #include "cubespring/triangle_mesh.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 /// A closed capsule along +z whose lowest point (the tip) is at the origin [m]: hemispheres of
 /// `radius` at both ends, `length` >= 2 radius overall; `around` vertices per ring.
 TriangleMesh capsule_mesh(double radius, double length, int around = 24, int cap_rings = 6);
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

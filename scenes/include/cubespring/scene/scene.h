@@ -1,7 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// The scene a `cubespring run` plays: an organ, a table, rigid tools on scripted paths, the time
-// line and the camera. Every field has the default that docs/scene-format.md gives for its key.
+// A scene file as data (cubespring::scene, the library `cubespring run` plays scenes with): an
+// organ, a table, rigid tools on scripted paths, the time line and the camera. Every field has
+// the default that docs/scene-format.md gives for its key. Units are SI throughout: metres,
+// kilograms, seconds, pascals.
 #pragma once
 
 #include <cstdint>
@@ -20,7 +22,7 @@
 #include "cubespring/render/renderer.h"
 #include "cubespring/result.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 /// Soft tissue as the scene gives it: a Material with the defaults of a soft organ, not the
 /// library's (1 MPa would be rubber).
@@ -129,4 +131,4 @@ Result<Scene> load_scene(const std::string& path, const std::string& data_dir);
 /// The largest scene file load_scene() reads [bytes].
 inline constexpr std::uintmax_t kMaxSceneBytes = 16000000;
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

@@ -10,10 +10,10 @@
 
 #include "cubespring/render/renderer.h"
 #include "cubespring/result.h"
-#include "scene.h"
-#include "scene_world.h"
+#include "cubespring/scene/scene.h"
+#include "cubespring/scene/scene_world.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 class SceneFrames {
  public:
@@ -38,4 +38,4 @@ class SceneFrames {
   Eigen::Matrix3Xd organ_normals_scratch_;
 };
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene

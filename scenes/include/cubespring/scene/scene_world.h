@@ -14,9 +14,9 @@
 #include "cubespring/bullet/world.h"
 #include "cubespring/result.h"
 #include "cubespring/triangle_mesh.h"
-#include "scene.h"
+#include "cubespring/scene/scene.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 struct SceneTool {
   std::string name;
@@ -79,4 +79,8 @@ class SceneWorld {
   OrganSummary summary_;
 };
 
-}  // namespace cubespring::app
+/// Lets the organ come to rest on the table for scene.settle_time before the story starts, the
+/// tools held at their first pose. An error when the organ goes unstable, with when.
+Status settle(SceneWorld& world, const Scene& scene);
+
+}  // namespace cubespring::scene

@@ -7,13 +7,13 @@
 
 #include <Eigen/Geometry>
 
-#include "scene.h"
+#include "cubespring/scene/scene.h"
 
-namespace cubespring::app {
+namespace cubespring::scene {
 
 /// The pose at time t [s]: position linear and orientation slerped between the key frames around
 /// t; the first key frame's pose before it, the last one's after it; identity at the origin
 /// without key frames.
 Eigen::Isometry3d pose_at(const std::vector<Keyframe>& keyframes, double t);
 
-}  // namespace cubespring::app
+}  // namespace cubespring::scene
