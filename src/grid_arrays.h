@@ -5,13 +5,13 @@
 // bodies: the grid passes").
 #pragma once
 
-#include <cassert>
 #include <cstddef>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "grid_layout.h"
+#include "invariant.h"
 
 namespace cubespring {
 
@@ -70,7 +70,7 @@ class LayerArrays {
   std::size_t slot_stride() const { return layer_stride(grid_); }
   /// Only layers of the grid are written (the passes return for the layers beyond it).
   [[gnu::always_inline]] double* out(int slot, int layer) const {
-    assert(layer >= 0);
+    CUBESPRING_ASSERT(layer >= 0);
     return place(slot, layer);
   }
 
@@ -84,7 +84,7 @@ class LayerArrays {
 
  private:
   [[gnu::always_inline]] double* place(int slot, int layer) const {
-    assert(layer >= 0 && layer < grid_.points.z());
+    CUBESPRING_ASSERT(layer >= 0 && layer < grid_.points.z());
     if (slot < kGridSlots) {
       const std::size_t point = grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
       return grid_arrays_ + grid_stride(grid_) * slot + point;

@@ -26,7 +26,6 @@
 #include <array>
 #include <atomic>
 #include <chrono>
-#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <thread>
@@ -34,6 +33,7 @@
 #include "cubespring/forces.h"
 #include "force_passes.h"
 #include "grid_arrays.h"
+#include "invariant.h"
 #include "neo_hookean_cell.h"
 #include "thread_shares.h"
 #include "vector_clones.h"
@@ -181,8 +181,8 @@ CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab,
   double cell_stiffness[4], cell_damping[4], rest[4], degenerate[4];
   for (int k = 0; k < 4; ++k) {
     const SpringFamily& family = grid.families[d0 + k];
-    assert(family.rows == grid.cell_rows && family.slabs == grid.cell_slabs);
-    assert(family.from == step[k] && family.to == step[7 - k]);
+    CUBESPRING_ASSERT(family.rows == grid.cell_rows && family.slabs == grid.cell_slabs);
+    CUBESPRING_ASSERT(family.from == step[k] && family.to == step[7 - k]);
     for (int c = 0; c < 3; ++c) out[k][c] = a.out(kFamilyForce + 3 * (d0 + k) + c, slab);
     stiffness[k] = kUniform ? nullptr : from_layer(family.stiffness, grid, slab);
     damping[k] = kWithRate && !kUniform ? from_layer(family.damping, grid, slab) : nullptr;

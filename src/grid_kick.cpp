@@ -2,12 +2,12 @@
 // SPDX-License-Identifier: MIT
 #include "grid_kick.h"
 
-#include <cassert>
 #include <cmath>
 #include <limits>
 
 #include "drive_nodes.h"
 #include "grid_layout.h"
+#include "invariant.h"
 #include "vector_clones.h"
 
 namespace cubespring {
@@ -90,7 +90,7 @@ double kick_nodes_of_kind(const GridKick& kick, const int* point_of_node, const 
 
 double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
                        int begin, int end, Eigen::Matrix3Xd& forces) {
-  assert(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
+  CUBESPRING_ASSERT(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const double fastest_sq = kick_nodes_of_kind(kick, point_of_node, spring_force, begin, end, forces);
   const KickDrift& k = kick.kick;
   if (k.driven != nullptr && !drive_nodes(*k.driven, k.step_of_drive(), k.start_of_drive(), *k.to, begin, end)) {

@@ -66,23 +66,22 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
     message << "speed_limit = " << settings.speed_limit << " m/s: must be a number >= 0 (0: the default)";
     invalid = message.str();
   }
-  if (!invalid.empty()) return {StepStatus::kInvalidInput, invalid};
-  if (!(settings.time_step > 0.0) || !std::isfinite(settings.time_step)) {
+  if (invalid.empty() && (!(settings.time_step > 0.0) || !std::isfinite(settings.time_step))) {
     std::ostringstream message;
     message << "time_step = " << settings.time_step << " s: the time step must be a finite number > 0";
-    return {StepStatus::kUnstable, message.str()};
+    invalid = message.str();
   }
-  if (settings.integrator == Integrator::kImplicitEuler) {
-    if (!(settings.solver_tolerance > 0.0) || !std::isfinite(settings.solver_tolerance) ||
-        settings.solver_max_iterations < 1) {
-      std::ostringstream message;
-      message << "solver_tolerance = " << settings.solver_tolerance << ", solver_max_iterations = "
-              << settings.solver_max_iterations
-              << ": the implicit step needs a finite tolerance > 0 and at least 1 iteration";
-      return {StepStatus::kSolverFailed, message.str()};
-    }
-    return implicit_step(model, constraints, loads, settings, state);
+  if (invalid.empty() && settings.integrator == Integrator::kImplicitEuler &&
+      (!(settings.solver_tolerance > 0.0) || !std::isfinite(settings.solver_tolerance) ||
+       settings.solver_max_iterations < 1)) {
+    std::ostringstream message;
+    message << "solver_tolerance = " << settings.solver_tolerance << ", solver_max_iterations = "
+            << settings.solver_max_iterations
+            << ": the implicit step needs a finite tolerance > 0 and at least 1 iteration";
+    invalid = message.str();
   }
+  if (!invalid.empty()) return {StepStatus::kInvalidInput, invalid};
+  if (settings.integrator == Integrator::kImplicitEuler) return implicit_step(model, constraints, loads, settings, state);
   return explicit_step(model, constraints, loads, settings, state);
 }
 

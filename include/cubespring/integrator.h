@@ -47,8 +47,11 @@ enum class StepStatus {
                   ///< limit; the state is left as it was before the step
   kSolverFailed,  ///< implicit: CG did not reach the tolerance; the state is left unchanged
   kInvalidInput,  ///< the state, loads or constraints do not fit the body (their node counts), the
-                  ///< gravity is not finite or speed_limit not >= 0, or the body is not the one
-                  ///< the stepper was made for: nothing was read or changed
+                  ///< gravity is not finite, speed_limit not >= 0, time_step not a finite number
+                  ///< > 0, the implicit solver's tolerance or iterations out of range, or the body
+                  ///< is not the one the stepper was made for: nothing was read or changed (a bad
+                  ///< time step read as kUnstable, bad solver settings as kSolverFailed, until
+                  ///< 2026-12-05)
 };
 const char* step_status_name(StepStatus status);
 

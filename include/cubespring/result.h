@@ -6,6 +6,16 @@
 #include <string>
 #include <utility>
 
+// The error contract, for every part of cubespring:
+// - Input a caller can get wrong (a value out of range, arrays that do not fit the body, a file)
+//   is refused with a message naming the argument or key, the value and what was expected: a
+//   Status or Result here, StepStatus::kInvalidInput for a step, StaticReport::message for the
+//   static solver. Nothing was read past an end or changed.
+// - StepStatus::kUnstable and kSolverFailed say what the simulation did with valid input (a node
+//   too fast, CG short of its tolerance), never that the settings were wrong.
+// - The library's own invariants are CUBESPRING_ASSERT (src/invariant.h), checked in the dev and
+//   asan builds; no input reaches them.
+// - The exceptions that are left are listed on Status below.
 namespace cubespring {
 
 /// Outcome of an operation on outside input: success, or a message that names the value at fault,

@@ -238,7 +238,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     std::ostringstream message;
     message << "a world step of " << step_length << " s needs " << needed << " sub-steps of " << body.sub_step_
             << " s, more than " << kMaxSubsteps << ": step the world in shorter steps";
-    body.last_report_ = {StepStatus::kUnstable, message.str()};
+    body.last_report_ = {StepStatus::kInvalidInput, message.str()};
     body.stop_message_ = "soft body stopped at t = " + std::to_string(time_) + " s: " + message.str();
     return;
   }

@@ -133,7 +133,8 @@ class SoftBody {
   };
   const Times& times() const { return times_; }
   /// The last sub-step's report; a world step stops advancing a body that went unstable, or
-  /// whose step would take more than 10^6 sub-steps (step the world in shorter steps).
+  /// whose step would take more than 10^6 sub-steps (kInvalidInput: step the world in shorter
+  /// steps).
   const StepReport& last_report() const { return last_report_; }
   /// Why the world stopped advancing this body, with when; empty while it steps normally.
   const std::string& stop_message() const { return stop_message_; }
