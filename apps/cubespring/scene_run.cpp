@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <ostream>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -33,15 +33,24 @@ std::string frame_name(int frame) {
   return name;
 }
 
+// The number of a file named as frame_name() names frames (frame_ and 4 or more digits, .png), or
+// -1 for any other name; numbers past 9 digits read as the largest int.
+long frame_number(const std::string& name) {
+  const std::string prefix = "frame_", suffix = ".png";
+  if (name.size() < prefix.size() + 4 + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return -1;
+  }
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return digits.size() > 9 ? std::numeric_limits<int>::max() : std::stol(digits);
+}
+
 // Frames of an earlier, longer run would read as part of this one: remove those past the last.
 void remove_stale_frames(const fs::path& folder, int frames) {
-  static const std::regex kFrame(R"(frame_(\d{4,})\.png)");
   std::error_code ignored;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ignored)) {
-    std::smatch match;
-    const std::string name = entry.path().filename().string();
-    if (!std::regex_match(name, match, kFrame)) continue;
-    if (match[1].length() > 9 || std::stol(match[1].str()) >= frames) fs::remove(entry.path(), ignored);
+    if (frame_number(entry.path().filename().string()) >= frames) fs::remove(entry.path(), ignored);
   }
 }
 

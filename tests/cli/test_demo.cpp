@@ -132,9 +132,17 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   constexpr int kFrames = 6;
   const TempDir dir;
   const fs::path out = dir.path() / "out";
+  // what an earlier, longer run left: its frames past this run's last go, other files stay
+  fs::create_directories(out);
+  const char* stale[] = {"frame_0006.png", "frame_0099.png", "frame_1234567890.png"};
+  const char* kept[] = {"frame_7.png", "frame_0099.png.bak", "frame_00x9.png", "notes.txt"};
+  for (const char* name : stale) std::ofstream(out / name) << "old";
+  for (const char* name : kept) std::ofstream(out / name) << "mine";
   const ToolRun run = run_tool("run --width " + std::to_string(kWidth) + " --height " + std::to_string(kHeight) +
                                " --frames " + std::to_string(kFrames) + " --out " + out.string());
   ASSERT_EQ(run.exit_code, 0) << run.out;
+  for (const char* name : stale) EXPECT_FALSE(fs::exists(out / name)) << name;
+  for (const char* name : kept) EXPECT_TRUE(fs::exists(out / name)) << name;
   EXPECT_NE(run.out.find("wrote 6 frames, tool_forces.csv and tool_force.png to " + out.string()), std::string::npos)
       << run.out;
 
