@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "cubespring/render/image.h"
-#include "force_plot.h"
+#include "cubespring/render/force_plot.h"
 #include "progress_bar.h"
 #include "cubespring/scene/scene_frames.h"
 #include "cubespring/scene/scene_world.h"

@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// A line plot of each tool's contact force magnitude over time, drawn straight into an Image.
+// A line plot of each tool's contact force magnitude over time, drawn straight into an Image with
+// the renderer's built-in font (no OpenGL): what `cubespring run` writes as tool_force.png.
 #pragma once
 
 #include <string>
@@ -8,7 +9,7 @@
 
 #include "cubespring/render/image.h"
 
-namespace cubespring::app {
+namespace cubespring {
 
 struct ForceSeries {
   std::string name;                ///< the tool's name, shown in the key
@@ -20,4 +21,4 @@ struct ForceSeries {
 /// series and a key with their names; width x height pixels.
 Image plot_forces(const std::vector<ForceSeries>& series, int width = 1000, int height = 500);
 
-}  // namespace cubespring::app
+}  // namespace cubespring

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "force_plot.h"
+#include "cubespring/render/force_plot.h"
 
 #include <algorithm>
 #include <array>
@@ -8,10 +8,9 @@
 #include <cstdint>
 #include <cstdio>
 
-// The renderer's built-in 5x7 font (src/render): the same letters as the frames' legend.
-#include "bitmap_font.h"
+#include "bitmap_font.h"  // the same letters as the frames' legend
 
-namespace cubespring::app {
+namespace cubespring {
 namespace {
 
 using Rgb = std::array<std::uint8_t, 3>;
@@ -153,4 +152,4 @@ Image plot_forces(const std::vector<ForceSeries>& series, int width, int height)
   return canvas.take();
 }
 
-}  // namespace cubespring::app
+}  // namespace cubespring
