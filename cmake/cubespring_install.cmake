@@ -48,3 +48,6 @@ endif()
 if(TARGET cubespring_app)
   install(TARGETS cubespring_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
+if(TARGET cubespring_bench)  # beside cubespring, which runs it for `cubespring bench...`
+  install(TARGETS cubespring_bench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "commands.h"
+#include "run_benchmarks.h"
 
 // Under LeakSanitizer: OSMesa keeps about 100 bytes per context that OSMesaDestroyContext does
 // not free, inside libOSMesa; not ours to fix, and not to be reported as ours.
@@ -14,23 +15,15 @@ extern "C" const char* __lsan_default_suppressions() { return "leak:libOSMesa.so
 extern "C" const char* __lsan_default_options() { return "print_suppressions=0"; }
 
 int main(int argc, char** argv) {
+  if (argc >= 2 && cubespring::app::is_benchmark_command(argv[1])) return cubespring::app::run_benchmarks(argc, argv);
   CLI::App app{"cubespring: calibrated cube mass-spring soft tissue (SI units throughout)"};
   app.set_version_flag("--version", "cubespring 0.1.0");
   std::map<std::string, cubespring::app::Command> commands;
+  app.footer(cubespring::app::benchmark_commands_help());
   commands["measure"] = cubespring::app::add_measure_command(app);
-  commands["bench"] = cubespring::app::add_bench_command(app);
   commands["voxelize"] = cubespring::app::add_voxelize_command(app);
-  commands["bench-voxelize"] = cubespring::app::add_bench_voxelize_command(app);
-  commands["bench-layout"] = cubespring::app::add_bench_layout_command(app);
-#ifdef CUBESPRING_HAS_BULLET
-  commands["bench-bullet"] = cubespring::app::add_bench_bullet_command(app);
-#endif
-#ifdef CUBESPRING_HAS_BULLET_PLUGIN
-  commands["bench-contact"] = cubespring::app::add_bench_contact_command(app);
-#endif
 #ifdef CUBESPRING_HAS_DEMO
   commands["run"] = cubespring::app::add_run_command(app);
-  commands["bench-render"] = cubespring::app::add_bench_render_command(app);
 #endif
   try {
     app.parse(argc, argv);

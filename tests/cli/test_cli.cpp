@@ -317,6 +317,31 @@ TEST(Cli, VoxelizeTableNamesTheParts) {
   EXPECT_NE(run.out.find("voxel volume"), std::string::npos) << run.out;
 }
 
+// `cubespring bench...` runs cubespring-bench from beside the cubespring program; a cubespring
+// copied away from it says what is missing, in one line, and exits 1.
+TEST(Cli, ABenchmarkWithoutItsProgramSaysWhatIsMissing) {
+  namespace fs = std::filesystem;
+  const fs::path alone = fs::path(::testing::TempDir()) / "cubespring_alone";
+  fs::create_directories(alone);
+  fs::copy_file(CUBESPRING_CLI_PATH, alone / "cubespring", fs::copy_options::overwrite_existing);
+  const std::string command = (alone / "cubespring").string() + " bench-layout --json 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string out;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) out += buffer.data();
+  const int status = pclose(pipe);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 1) << out;
+  EXPECT_EQ(out.find("error: `cubespring bench-layout` runs the benchmarks' own program, " +
+                     (alone / "cubespring-bench").string() + ", which is not there"),
+            0u)
+      << out;
+  EXPECT_NE(out.find("CUBESPRING_BUILD_BENCHMARKS=OFF"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  fs::remove_all(alone);
+}
+
+#ifdef CUBESPRING_HAS_BENCHMARKS
 // A short core bench run: one row per body with the documented JSON keys, the bodies' sizes counted
 // by hand (a 2x2x2 box: 27 nodes, 54 edges + 32 inner diagonals), every timed column a positive time
 // (the 2-thread ceiling from the 1-thread step and two bodies at once); the floor with implicit
@@ -433,6 +458,7 @@ TEST(Cli, BenchContactProbesAndDropsWithinTheContactTargets) {
   EXPECT_GT(drop["sunk_m"].get<double>(), 0.0) << drop.dump();
 }
 #endif
+#endif  // CUBESPRING_HAS_BENCHMARKS
 
 struct BadArgument {
   const char* arguments;

@@ -652,6 +652,7 @@ TEST(DemoCli, AFolderADeepNestAndAHugeFileAreRefusedAsScenes) {
   EXPECT_NE(run.out.find("a scene file is at most 16 MB"), std::string::npos) << run.out.substr(0, 300);
 }
 
+#ifdef CUBESPRING_HAS_BENCHMARKS  // bench-render runs in cubespring-bench
 TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   const ToolRun run = run_tool("bench-render --frames 2 --seconds 0.02 --sizes '64x36;96x54' --json", false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
@@ -693,11 +694,15 @@ TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   EXPECT_NE(endless.exit_code, 0);
   EXPECT_NE(endless.out.find("--seconds: 'nan' is not a finite number > 0"), std::string::npos) << endless.out;
 }
+#endif  // CUBESPRING_HAS_BENCHMARKS
 
 TEST(DemoCli, HelpAndVersionStillAnswer) {
   const ToolRun help = run_tool("--help");
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.out.find("run"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("bench, bench-voxelize, bench-layout, bench-bullet, bench-contact, bench-render"),
+            std::string::npos)
+      << "the benchmarks are listed, though cubespring-bench runs them: " << help.out;
   const ToolRun version = run_tool("--version");
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_NE(version.out.find("cubespring"), std::string::npos);

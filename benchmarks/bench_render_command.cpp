@@ -24,7 +24,6 @@
 #include "json_output.h"
 #include "number_checks.h"
 #include "cubespring/scene/scene_frames.h"
-#include "scene_run.h"
 
 namespace cubespring::app {
 namespace {
