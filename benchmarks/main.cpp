@@ -2,9 +2,8 @@
 // SPDX-License-Identifier: MIT
 // cubespring-bench: the benchmarks, each a subcommand that prints a table (or JSON with --json).
 // `cubespring bench...` hands its arguments to this program.
-#include <exception>
-#include <iostream>
 #include <map>
+#include <string>
 
 #include "commands.h"
 
@@ -29,27 +28,5 @@ int main(int argc, char** argv) {
 #ifdef CUBESPRING_HAS_DEMO
   commands["bench-render"] = cubespring::app::add_bench_render_command(app);
 #endif
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return 0;
-  } catch (const CLI::CallForVersion& e) {
-    std::cout << e.what() << "\n";
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << e.what() << "\n";  // one line that names the argument
-    return 2;
-  }
-  // what escapes a benchmark (memory exhausted, say) still ends as one line and a non-zero exit
-  try {
-    for (auto& [name, run] : commands) {
-      if (app.got_subcommand(name)) return run();
-    }
-    std::cout << app.help();
-    return 0;
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
+  return cubespring::app::parse_and_run(app, argc, argv, commands);
 }

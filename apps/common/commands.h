@@ -4,6 +4,8 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -24,5 +26,12 @@ Command add_bench_contact_command(CLI::App& app);
 Command add_run_command(CLI::App& app);
 /// Only with the demo (CUBESPRING_HAS_DEMO): the demo's physics and rendering costs.
 Command add_bench_render_command(CLI::App& app);
+
+/// Parses the arguments and runs the subcommand chosen among `commands` (`otherwise` when none
+/// is, or the help when that is empty); gives the exit code. Help and version answer on stdout; a
+/// parse error is one line naming the argument (exit 2); what escapes a command (memory
+/// exhausted, say) is one line and exit 1, never an abort.
+int parse_and_run(CLI::App& app, int argc, char** argv, const std::map<std::string, Command>& commands,
+                  const Command& otherwise = {});
 
 }  // namespace cubespring::app

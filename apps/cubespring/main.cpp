@@ -1,9 +1,8 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // cubespring: calibrated soft-tissue simulation from the command line.
-#include <iostream>
-#include <exception>
 #include <map>
+#include <string>
 
 #include "commands.h"
 #include "run_benchmarks.h"
@@ -24,34 +23,8 @@ int main(int argc, char** argv) {
   commands["voxelize"] = cubespring::app::add_voxelize_command(app);
 #ifdef CUBESPRING_HAS_DEMO
   commands["run"] = cubespring::app::add_run_command(app);
-#endif
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp&) {
-    std::cout << app.help();
-    return 0;
-  } catch (const CLI::CallForVersion& e) {
-    std::cout << e.what() << "\n";
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    // one line that names the argument, then a non-zero exit
-    std::cerr << "error: " << e.what() << "\n";
-    return 2;
-  }
-  // the commands report bad input themselves; what escapes them (memory exhausted, say) still
-  // ends as one line and a non-zero exit, not an abort
-  try {
-    for (auto& [name, run] : commands) {
-      if (app.got_subcommand(name)) return run();
-    }
-#ifdef CUBESPRING_HAS_DEMO
-    return commands["run"]();  // no subcommand: the default scene (the surgical demo)
+  return cubespring::app::parse_and_run(app, argc, argv, commands, commands["run"]);  // alone: the demo
 #else
-    std::cout << app.help();
-    return 0;
+  return cubespring::app::parse_and_run(app, argc, argv, commands);
 #endif
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return 1;
-  }
 }
