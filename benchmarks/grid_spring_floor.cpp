@@ -6,7 +6,7 @@
 #include <cmath>
 
 // Built for AVX-512 and AVX2 beside the baseline, like the engine's grid passes
-// (src/grid_forces.cpp), so that the floor is as fast as the machine allows.
+// (src/forces/grid/grid_forces.cpp), so that the floor is as fast as the machine allows.
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define CUBESPRING_FLOOR_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else

@@ -26,7 +26,7 @@ struct ForceOptions {
   int threads = 1;      ///< threads for the force passes; the result does not depend on it
 };
 
-/// How the grid passes share a body's z-layers among threads (src/grid_forces.cpp): threads go in
+/// How the grid passes share a body's z-layers among threads (src/forces/grid/grid_forces.cpp): threads go in
 /// pairs, each pair's region of layers swept by one thread from the bottom and the other from the
 /// top, each claiming a layer as it gets to it, so that they meet where their speeds on that call
 /// bring them (an odd thread out sweeps a region alone). Between regions, from an even split, a
@@ -57,7 +57,7 @@ struct ForceWorkspace {
   std::vector<Eigen::Matrix3Xd> block_halo;  ///< forces of each block's springs and cells on the next block's nodes [N]
   std::vector<int> block_crushed;         ///< crushed cells found by each block
   std::vector<double> block_fastest;      ///< largest squared speed each block gave a node [m^2/s^2]
-  std::vector<double> grid_arrays;        ///< arrays of the grid passes (src/grid_forces.h)
+  std::vector<double> grid_arrays;        ///< arrays of the grid passes (src/forces/grid/grid_forces.h)
   std::vector<int> crushed_corners;       ///< nodes of the crushed cells, when the grid passes kicked
   std::shared_ptr<const void> grid_arrays_layout;  ///< the grid layout grid_arrays belong to
   GridSplit grid_split;                   ///< how the grid passes share the layers among threads

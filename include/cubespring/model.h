@@ -23,7 +23,7 @@ inline constexpr int kCornersPerCell = 8;
 inline constexpr int kEdgesPerCell = 12;
 inline constexpr int kEdgesPerAxis = 4;
 
-struct GridLayout;  // internal: src/grid_layout.h
+struct GridLayout;  // internal: src/forces/grid/grid_layout.h
 
 /// The constant part of a simulated body: topology, rest state, masses and stiffnesses. Built once
 /// by build_model(); the time-varying part lives in State. Arrays are flat, one entry per item.

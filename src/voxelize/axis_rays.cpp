@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "axis_rays.h"
+#include "voxelize/axis_rays.h"
 
 #include <algorithm>
 #include <array>

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "sample_grid.h"
+#include "voxelize/sample_grid.h"
 
 namespace cubespring::voxelize_detail {
 

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "cell_connectivity.h"
+#include "voxelize/cell_connectivity.h"
 
 #include <algorithm>
 #include <array>

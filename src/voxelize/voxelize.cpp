@@ -14,10 +14,10 @@
 
 #include <Eigen/Geometry>
 
-#include "axis_rays.h"
-#include "cell_connectivity.h"
-#include "sample_grid.h"
-#include "winding_number.h"
+#include "voxelize/axis_rays.h"
+#include "voxelize/cell_connectivity.h"
+#include "voxelize/sample_grid.h"
+#include "voxelize/winding_number.h"
 
 namespace cubespring {
 

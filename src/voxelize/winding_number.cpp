@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "winding_number.h"
+#include "voxelize/winding_number.h"
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// The implicit step's conjugate gradients (src/conjugate_gradient.h) against Eigen's solver and a
+// The implicit step's conjugate gradients (src/solve/conjugate_gradient.h) against Eigen's solver and a
 // residual computed afresh, and the same bits on any thread count.
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <Eigen/SparseCore>
 #include <gtest/gtest.h>
 
-#include "conjugate_gradient.h"
+#include "solve/conjugate_gradient.h"
 
 namespace cubespring {
 namespace {

@@ -19,8 +19,8 @@
 #include <gtest/gtest.h>
 
 #include "cubespring/forces.h"
-#include "grid_forces.h"
-#include "grid_layout.h"
+#include "forces/grid/grid_forces.h"
+#include "forces/grid/grid_layout.h"
 #include "test_support.h"
 
 namespace cubespring {

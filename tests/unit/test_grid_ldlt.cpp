@@ -12,7 +12,7 @@
 
 #include "cubespring/lattice.h"
 #include "cubespring/stiffness.h"
-#include "grid_ldlt.h"
+#include "solve/grid_ldlt.h"
 
 namespace cubespring {
 namespace {

@@ -13,7 +13,7 @@
 
 #include "cubespring/experiments.h"
 #include "cubespring/static_solver.h"
-#include "neo_hookean_cell.h"
+#include "model/neo_hookean_cell.h"
 #include "test_support.h"
 
 namespace cubespring {

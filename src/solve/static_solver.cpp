@@ -12,8 +12,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "cubespring/stiffness.h"
-#include "grid_ldlt.h"
-#include "input_checks.h"
+#include "forces/input_checks.h"
+#include "solve/grid_ldlt.h"
 
 namespace cubespring {
 namespace {

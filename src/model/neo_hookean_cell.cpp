@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The neo-Hookean cell term: docs/model-neo-hookean.md gives each formula used here.
-#include "neo_hookean_cell.h"
+#include "model/neo_hookean_cell.h"
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "grid_ldlt.h"
+#include "solve/grid_ldlt.h"
 
 #include <algorithm>
 #include <cmath>

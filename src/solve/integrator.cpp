@@ -10,10 +10,10 @@
 #include <stdexcept>
 #include <string>
 
-#include "conjugate_gradient.h"
-#include "drive_nodes.h"
-#include "force_passes.h"
-#include "input_checks.h"
+#include "forces/drive_nodes.h"
+#include "forces/force_passes.h"
+#include "forces/input_checks.h"
+#include "solve/conjugate_gradient.h"
 #include "thread_shares.h"
 
 namespace cubespring {

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "cell_geometry.h"
 #include "cubespring/forces.h"
-#include "force_blocks.h"
-#include "grid_layout.h"
-#include "neo_hookean_cell.h"
+#include "forces/force_blocks.h"
+#include "forces/grid/grid_layout.h"
+#include "model/cell_geometry.h"
+#include "model/neo_hookean_cell.h"
 
 namespace cubespring {
 namespace {

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "force_blocks.h"
+#include "forces/force_blocks.h"
 
 #include <algorithm>
 

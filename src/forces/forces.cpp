@@ -25,15 +25,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "cell_geometry.h"
-#include "drive_nodes.h"
-#include "force_blocks.h"
-#include "force_passes.h"
-#include "grid_forces.h"
-#include "input_checks.h"
-#include "neo_hookean_cell.h"
+#include "forces/drive_nodes.h"
+#include "forces/force_blocks.h"
+#include "forces/force_passes.h"
+#include "forces/grid/grid_forces.h"
+#include "forces/input_checks.h"
+#include "forces/twist.h"
+#include "model/cell_geometry.h"
+#include "model/neo_hookean_cell.h"
 #include "thread_shares.h"
-#include "twist.h"
 
 namespace cubespring {
 namespace {

@@ -14,13 +14,13 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "cell_geometry.h"
 #include "cubespring/forces.h"
-#include "force_passes.h"
+#include "forces/force_passes.h"
+#include "forces/input_checks.h"
+#include "forces/twist.h"
+#include "model/cell_geometry.h"
+#include "model/neo_hookean_cell.h"
 #include "thread_shares.h"
-#include "input_checks.h"
-#include "neo_hookean_cell.h"
-#include "twist.h"
 
 namespace cubespring {
 namespace {

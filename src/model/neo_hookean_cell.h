@@ -15,8 +15,8 @@
 
 #include <Eigen/Core>
 
-#include "cell_geometry.h"
 #include "cubespring/cell_law.h"
+#include "model/cell_geometry.h"
 
 namespace cubespring {
 

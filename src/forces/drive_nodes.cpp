@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "drive_nodes.h"
+#include "forces/drive_nodes.h"
 
 #include <algorithm>
 #include <cstring>

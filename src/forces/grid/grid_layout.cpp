@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "grid_layout.h"
+#include "forces/grid/grid_layout.h"
 
 #include <algorithm>
 #include <functional>
@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "cell_geometry.h"
+#include "model/cell_geometry.h"
 
 namespace cubespring {
 namespace {

@@ -14,7 +14,7 @@
 #include "cubespring/forces.h"
 #include "cubespring/static_solver.h"
 #include "cubespring/strain.h"
-#include "finite_strain_experiments.h"
+#include "validation/finite_strain_experiments.h"
 
 namespace cubespring {
 namespace {

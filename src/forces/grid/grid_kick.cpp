@@ -1,14 +1,14 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "grid_kick.h"
+#include "forces/grid/grid_kick.h"
 
 #include <cmath>
 #include <limits>
 
-#include "drive_nodes.h"
-#include "grid_layout.h"
+#include "forces/drive_nodes.h"
+#include "forces/grid/grid_layout.h"
+#include "forces/grid/vector_clones.h"
 #include "invariant.h"
-#include "vector_clones.h"
 
 namespace cubespring {
 namespace {

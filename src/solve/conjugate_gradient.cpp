@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "conjugate_gradient.h"
+#include "solve/conjugate_gradient.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "grid_layout.h"
+#include "forces/grid/grid_layout.h"
 #include "invariant.h"
 
 namespace cubespring {

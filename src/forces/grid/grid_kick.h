@@ -9,7 +9,7 @@
 #include "cubespring/forces.h"
 #include "cubespring/model.h"
 #include "cubespring/state.h"
-#include "force_passes.h"
+#include "forces/force_passes.h"
 
 namespace cubespring {
 

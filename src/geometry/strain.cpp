@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "cell_geometry.h"
+#include "model/cell_geometry.h"
 
 namespace cubespring {
 

@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "input_checks.h"
+#include "forces/input_checks.h"
 
 #include <sstream>
 #include <stdexcept>

@@ -9,8 +9,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "cell_geometry.h"
 #include "cubespring/stiffness.h"
+#include "model/cell_geometry.h"
 
 namespace cubespring {
 namespace {

@@ -20,7 +20,7 @@
 // The passes run z-layer by z-layer, each as soon as its inputs are there, and keep their
 // temporaries for the 3 layers they read at once only (a ring per thread), so that the
 // temporaries stay in cache and only the state, forces and model stream through it.
-#include "grid_forces.h"
+#include "forces/grid/grid_forces.h"
 
 #include <algorithm>
 #include <array>
@@ -31,12 +31,12 @@
 #include <thread>
 
 #include "cubespring/forces.h"
-#include "force_passes.h"
-#include "grid_arrays.h"
+#include "forces/force_passes.h"
+#include "forces/grid/grid_arrays.h"
+#include "forces/grid/vector_clones.h"
 #include "invariant.h"
-#include "neo_hookean_cell.h"
+#include "model/neo_hookean_cell.h"
 #include "thread_shares.h"
-#include "vector_clones.h"
 
 namespace cubespring {
 namespace {
@@ -146,7 +146,7 @@ inline double edge_sum(const CellEdges& edges, int g) {
 }
 
 // The twist of the exact-bending model (docs/model-exact-bending.md section 3; the same terms as
-// src/twist.h, arranged by faces of the grid). A cell's two faces normal to d (in-plane axes
+// src/forces/twist.h, arranged by faces of the grid). A cell's two faces normal to d (in-plane axes
 // a < c) have mean edge vectors a_s, c_s (s = lower, upper); w_d = (a_u . c_u - a_l . c_l) / h^2
 // and Q_d = k h w_d / 2. The a-edges of a face get the force -Q_d c_l (lower face of the cell) or
 // +Q_d c_u (upper face) on their lower corner, the c-edges -Q_d a_l or +Q_d a_u. A face is the

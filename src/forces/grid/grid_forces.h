@@ -11,8 +11,8 @@
 
 #include "cubespring/forces.h"
 #include "cubespring/state.h"
-#include "grid_kick.h"
-#include "grid_layout.h"
+#include "forces/grid/grid_kick.h"
+#include "forces/grid/grid_layout.h"
 
 namespace cubespring {
 
