@@ -5,6 +5,7 @@
 // weight, stress-strain curves against the neo-Hookean law's closed form).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "number_checks.h"
 #include "cubespring/experiments.h"
 #include "cubespring/fem_comparison.h"
+#include "cubespring/static_solver.h"
 #ifdef CUBESPRING_HAS_RENDER
 #include "cantilever_picture.h"
 #endif
@@ -41,6 +43,7 @@ struct MeasureOptions {
   std::string model = "baudet2007";
   std::string law = "springs";
   std::string support = "bonded";
+  std::uint64_t max_memory = 0;  // 0: half this machine's memory
   ExactBendingParameters exact_bending;
   bool json = false;
   std::string png;        // empty: no picture
@@ -271,6 +274,23 @@ std::string with_flag(const std::string& message) {
   return message;
 }
 
+// Operations a second of the static solver's dense fronts on one core of the machines we
+// measured (a 24^3 elongation: 4e10 operations a factorisation, 12 s for the whole run).
+constexpr double kFactorisationOperationsPerSecond = 3e9;
+
+// Says on stderr, before it starts, what a block's static solves will take when one
+// factorisation would take more than a few seconds: a large --cells otherwise runs for minutes
+// with no word.
+void announce_long_solves(const Eigen::Vector3i& cells) {
+  const FactorisationCost cost = estimate_block_factorisation(cells);
+  const double seconds = cost.operations / kFactorisationOperationsPerSecond;
+  if (seconds < 5.0) return;
+  std::fprintf(stderr,
+               "measure: %d x %d x %d cells: each factorisation of the stiffness (one a Newton iteration) "
+               "takes about %.2g GB and %.0f s (%.2g operations at about 3e9 a second)\n",
+               cells.x(), cells.y(), cells.z(), cost.peak_bytes / 1e9, seconds, cost.operations);
+}
+
 int run_measure(const MeasureOptions& o) {
   Result<Experiment> experiment = parse_experiment(o.experiment);
   if (!experiment) {
@@ -327,6 +347,14 @@ int run_measure(const MeasureOptions& o) {
     }
     reference = std::move(read).value();
   }
+  settings.max_memory_bytes = o.max_memory;
+  if (Status checked = check_experiment(experiment.value(), settings); !checked) {
+    const bool memory = checked.message().find("memory limit") != std::string::npos;
+    std::cerr << "error: " << with_flag(checked.message())
+              << (memory ? "; give fewer --cells or a larger --max-memory" : "") << "\n";
+    return 2;
+  }
+  announce_long_solves(settings.cells);
   Result<ExperimentResult> result = run_experiment(experiment.value(), settings);
   if (!result) {
     std::cerr << "error: " << with_flag(result.message()) << "\n";
@@ -378,6 +406,10 @@ Command add_measure_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--density", options->density, "density [kg/m^3]")->check(finite_number())
       ->capture_default_str();
+  cmd->add_option("--max-memory", options->max_memory,
+                  "refuse blocks whose estimate (the body and its static solver's factorisation) exceeds BYTES "
+                  "(default: half of this machine's memory)")
+      ->check(byte_count());
   cmd->add_option("--cells", options->cells,
                   "block size NX,NY,NZ in cells (default 1,1,1; cantilever 16,4,4; self-weight 12,12,12; the curves "
                   "4,4,4; bonded-compression 8,8,8)");

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,6 +75,9 @@ struct ExperimentSettings {
   double gravity = 9.81;                          ///< cantilever and self-weight [m/s^2], along -z
   ShearControl shear_control = ShearControl::kDisplacement;
   Support support = Support::kBonded;             ///< self-weight only
+  /// Refuse a block whose static solve would take more memory than this [bytes]
+  /// (estimate_block_factorisation, static_solver.h); 0: half this machine's memory.
+  std::uint64_t max_memory_bytes = 0;
 };
 
 /// One point of a finite-strain experiment's curve: the strain, the lattice's nominal (first
@@ -132,6 +136,10 @@ struct ExperimentResult {
 /// Builds the block, applies the experiment's loads and constraints, solves for static equilibrium
 /// and measures. Errors name the invalid setting or the failed solve.
 Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings);
+
+/// The settings' checks of run_experiment alone (ranges, the block's size and memory), without
+/// building anything: a caller can say what a long run will take before it starts it.
+Status check_experiment(Experiment experiment, const ExperimentSettings& settings);
 
 /// The compressible neo-Hookean law of docs/model-neo-hookean.md (with its inversion barrier; J
 /// above 0.05) in closed form: nominal stresses [Pa] of a material's E and nu.

@@ -57,4 +57,15 @@ struct StaticReport {
 StaticReport solve_static(const Model& model, const Constraints& constraints, const Loads& loads,
                           const StaticSettings& settings, State& state);
 
+/// What one factorisation of solve_static's stiffness costs on a block of cells.x() x cells.y() x
+/// cells.z() cells (a full box), counted from its nested-dissection fronts without building
+/// anything, so that a caller can refuse or announce a long run before it starts. It grows as the
+/// block's largest cross-section squared (bytes) and cubed (operations).
+struct FactorisationCost {
+  double factor_bytes = 0;  ///< the factor's dense fronts, kept for the solves [bytes]
+  double peak_bytes = 0;    ///< those and the largest front while it is factorised [bytes]
+  double operations = 0;    ///< floating-point operations of one factorisation
+};
+FactorisationCost estimate_block_factorisation(const Eigen::Vector3i& cells);
+
 }  // namespace cubespring

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "cubespring/static_solver.h"
+
 namespace cubespring {
 namespace {
 
@@ -73,6 +75,39 @@ bool dense_ldlt(Eigen::Ref<Eigen::MatrixXd> a) {
     a.bottomRightCorner(rest, rest).triangularView<Eigen::Lower>() -= scaled * l21.transpose();
   }
   return true;
+}
+
+// The fronts dissect() makes of a full box of nodes [lo, hi] inside the grid [0, top], with the
+// cost of each: a front's own unknowns are its nodes' (3 a node), its update those of the nodes
+// around its part that are eliminated later, which in a nested dissection are all the nodes one
+// index outside the part (the planes that cut it off, or nothing at the grid's boundary).
+void add_box_fronts(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi, const Eigen::Vector3i& top,
+                    FactorisationCost& cost, double& largest_front) {
+  const auto nodes = [](const Eigen::Vector3i& a, const Eigen::Vector3i& b) {
+    return (b - a + Eigen::Vector3i::Ones()).cast<double>().prod();
+  };
+  const auto add_front = [&](double own_nodes) {
+    const double around = nodes((lo - Eigen::Vector3i::Ones()).cwiseMax(0), (hi + Eigen::Vector3i::Ones()).cwiseMin(top)) -
+                          nodes(lo, hi);
+    const double own = 3 * own_nodes, update = 3 * around, size = own + update;
+    cost.factor_bytes += 8 * size * own;  // the front's columns of L, kept
+    largest_front = std::max(largest_front, 8 * size * size);
+    // its own block's LDL^T, the update's columns and the Schur complement
+    cost.operations += own * own * own / 3 + own * own * update + own * update * update;
+  };
+  const double count = nodes(lo, hi);
+  int axis = 0;
+  const int extent = (hi - lo).maxCoeff(&axis);
+  if (count <= static_cast<double>(kSmallestPart) || extent < 2) return add_front(count);
+  const int middle = (lo[axis] + hi[axis]) / 2;
+  Eigen::Vector3i below_hi = hi, above_lo = lo;
+  below_hi[axis] = middle - 1;
+  above_lo[axis] = middle + 1;
+  add_box_fronts(lo, below_hi, top, cost, largest_front);
+  add_box_fronts(above_lo, hi, top, cost, largest_front);
+  Eigen::Vector3i plane_lo = lo, plane_hi = hi;
+  plane_lo[axis] = plane_hi[axis] = middle;
+  add_front(nodes(plane_lo, plane_hi));  // its part is the whole box: what surrounds the box
 }
 
 }  // namespace
@@ -215,6 +250,20 @@ Eigen::VectorXd GridLDLT::solve(const Eigen::VectorXd& b) const {
   y = y.cwiseQuotient(pivots_);
   backward(y);
   return permutation_.inverse() * y;
+}
+
+FactorisationCost estimate_block_factorisation(const Eigen::Vector3i& cells) {
+  FactorisationCost cost;
+  double largest_front = 0;
+  add_box_fronts(Eigen::Vector3i::Zero(), cells, cells, cost, largest_front);
+  cost.peak_bytes = cost.factor_bytes + largest_front;  // factorised in a square matrix of its own
+  return cost;
+}
+
+double GridLDLT::factor_bytes() const {
+  double bytes = 0;
+  for (const Front& front : fronts_) bytes += 8.0 * static_cast<double>(front.lower.size());
+  return bytes;
 }
 
 Eigen::VectorXd GridLDLT::pivot_direction(Eigen::Index i) const {

@@ -35,6 +35,8 @@ class GridLDLT {
   /// v with v^T (k + shift I) v = pivots()[i] (a direction of negative curvature where that
   /// pivot is negative).
   Eigen::VectorXd pivot_direction(Eigen::Index i) const;
+  /// The factor's dense fronts [bytes] (estimate_block_factorisation counts them beforehand).
+  double factor_bytes() const;
 
  private:
   struct Front {

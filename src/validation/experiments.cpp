@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -14,6 +16,7 @@
 #include "cubespring/forces.h"
 #include "cubespring/static_solver.h"
 #include "cubespring/strain.h"
+#include "cubespring/voxelize.h"
 #include "validation/finite_strain_experiments.h"
 
 namespace cubespring {
@@ -60,9 +63,24 @@ Status check_settings(Experiment experiment, const ExperimentSettings& s) {
   }
   // before box_lattice() lists them
   // in double: three ints' product can pass 2^64
-  if (Status size = check_lattice_size(static_cast<double>(s.cells.x()) * s.cells.y() * s.cells.z()); !size) {
+  const double cells = static_cast<double>(s.cells.x()) * s.cells.y() * s.cells.z();
+  if (Status size = check_lattice_size(cells, s.max_memory_bytes); !size) {
     std::ostringstream message;
     message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z() << ": " << size.message();
+    return Status::error(message.str());
+  }
+  // the static solver's factor, beside the body, before either is built (a 40^3 block took
+  // minutes and 3.8 GB with no word; 100^3 would take over 100 GB)
+  const std::uint64_t limit = s.max_memory_bytes > 0 ? s.max_memory_bytes : default_memory_limit();
+  const auto count = static_cast<std::uint64_t>(cells);
+  const double bytes = estimate_block_factorisation(s.cells).peak_bytes +
+                       static_cast<double>(estimate_body_bytes(count, count, 7 * count));
+  if (bytes > static_cast<double>(limit)) {
+    std::ostringstream message;
+    message << std::setprecision(3) << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z()
+            << ": the block and its static solver's factorisation take about " << bytes / 1e9
+            << " GB, more than the memory limit of " << static_cast<double>(limit) / 1e9 << " GB"
+            << (s.max_memory_bytes > 0 ? "" : " (half this machine's memory)");
     return Status::error(message.str());
   }
   if (is_finite_strain_experiment(experiment)) {
@@ -222,6 +240,10 @@ Result<Experiment> parse_experiment(const std::string& name) {
 
 const char* shear_control_name(ShearControl control) {
   return control == ShearControl::kDisplacement ? "displacement" : "force";
+}
+
+Status check_experiment(Experiment experiment, const ExperimentSettings& settings) {
+  return check_settings(experiment, settings);
 }
 
 Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentSettings& settings) {

@@ -182,6 +182,37 @@ TEST(Cli, MeasureRefusesNumbersWhoseResultsWouldNotBeFinite) {
   }
 }
 
+// A block too large for the static solver is refused before anything is built, with the
+// estimate and the limit, in a line (100^3 took minutes with no word, then all the memory); a
+// block whose factorisations take a while is announced on stderr before the run starts.
+TEST(Cli, MeasureRefusesABlockTooLargeForItsMemoryAndAnnouncesALongOne) {
+  ToolRun run = run_tool("measure elongation --cells 100,100,100");
+  EXPECT_EQ(run.exit_code, 2) << run.out;
+  EXPECT_NE(run.out.find("--cells: cells = 100,100,100: the block and its static solver's factorisation take about"),
+            std::string::npos)
+      << run.out;
+  EXPECT_NE(run.out.find("--max-memory"), std::string::npos) << run.out;
+  EXPECT_EQ(run.out.find("measure: 100 x 100 x 100"), std::string::npos) << "refused, not announced: " << run.out;
+  EXPECT_LT(run.out.size(), 300u) << run.out;
+  // the limit given: a 34^3 block's estimate (about 1.4 GB) against 0.5 GB
+  run = run_tool("measure elongation --cells 34,34,34 --max-memory 500000000");
+  EXPECT_EQ(run.exit_code, 2) << run.out;
+  EXPECT_NE(run.out.find("more than the memory limit of 0.5 GB;"), std::string::npos) << run.out;
+  run = run_tool("measure elongation --max-memory -1");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("--max-memory: '-1' is not a whole number of bytes"), std::string::npos) << run.out;
+  // a 34^3 block (about 100 s a factorisation) is announced before it starts: stopped after 4 s
+  run = run_tool("measure elongation --cells 34,34,34 2>&1 & sleep 4; kill $! 2>/dev/null; wait");
+  EXPECT_NE(run.out.find("measure: 34 x 34 x 34 cells: each factorisation of the stiffness (one a Newton iteration) "
+                         "takes about 1.4 GB"),
+            std::string::npos)
+      << run.out;
+  // a small block runs as before, without a word on stderr (run_tool reads both streams)
+  run = run_tool("measure elongation --cells 4,4,4 --max-memory 500000000");
+  EXPECT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_EQ(run.out.find("measure: "), std::string::npos) << run.out;
+}
+
 // voxelize's numbers: ranges stated plainly (not DBL_MAX in 309 digits), a scale that overflows
 // the mesh's volume named (it said "needs about -nan MB"), a negative byte count refused (it
 // wrapped to 2^64 - 1).

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "cubespring/lattice.h"
+#include "cubespring/static_solver.h"
 #include "cubespring/stiffness.h"
 #include "solve/grid_ldlt.h"
 
@@ -68,6 +69,30 @@ TEST(GridLdlt, SolvesAndCountsNegativeEigenvaluesAsADenseSolverDoes) {
   pivots.minCoeff(&most_negative);
   const Eigen::VectorXd v = ldlt.pivot_direction(most_negative);
   EXPECT_NEAR(v.dot(shifted * v), pivots[most_negative], 1e-8 * std::abs(pivots[most_negative]));
+}
+
+// The estimate that measure checks before it builds a block counts the fronts' kept bytes exactly
+// as the factorisation keeps them (it mirrors the dissection on boxes, without the matrix), and
+// its peak and operations grow as they must with the block's cross-section.
+TEST(GridLdlt, TheBlockEstimateCountsTheFactorsBytes) {
+  Material material;
+  for (const Eigen::Vector3i& cells : {Eigen::Vector3i(1, 1, 1), Eigen::Vector3i(6, 3, 2), Eigen::Vector3i(5, 5, 5),
+                                       Eigen::Vector3i(12, 4, 3), Eigen::Vector3i(2, 9, 7)}) {
+    const Model model = build_model(box_lattice(cells, Eigen::Vector3d::Constant(0.01), material)).value();
+    StiffnessAssembler assembler(model);
+    SparseMatrix assembled;
+    assembler.assemble(model, model.rest_positions, StiffnessKind::kExact, 1.0, 0.0, assembled);
+    GridLDLT ldlt(model);
+    ASSERT_TRUE(ldlt.factorise(assembled, 1.0));  // shifted: the free block's rigid modes
+    const FactorisationCost cost = estimate_block_factorisation(cells);
+    EXPECT_EQ(cost.factor_bytes, ldlt.factor_bytes()) << cells.transpose();
+    EXPECT_GT(cost.peak_bytes, cost.factor_bytes);
+  }
+  // a block 8 times larger across its cross-section: about 8^2 the bytes, 8^3 the operations
+  const FactorisationCost small = estimate_block_factorisation({10, 10, 10});
+  const FactorisationCost large = estimate_block_factorisation({80, 80, 80});
+  EXPECT_GT(large.peak_bytes / small.peak_bytes, 0.5 * 512);  // 8^3 blocks of 8^2 each, at most
+  EXPECT_GT(large.operations / small.operations, 0.5 * 8 * 8 * 8 * 8 * 8 * 8);
 }
 
 }  // namespace
