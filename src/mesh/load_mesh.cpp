@@ -20,6 +20,8 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include "child_reader.h"
+#include "cubespring/voxelize.h"  // default_memory_limit
 #include "mesh_format.h"
 #include "off_file.h"
 #include "ply_file.h"
@@ -224,12 +226,18 @@ TriangleMesh to_triangle_mesh(MeshBuilder&& built) {
   return mesh;
 }
 
+Result<TriangleMesh> read_with_assimp(const std::string& path, const LoadOptions& options, MeshFormat format);
+
 Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   if (!std::isfinite(options.scale) || options.scale <= 0.0) {
     return file_error(path,
                       "scale = " + format(options.scale) +
                           ": LoadOptions::scale [m per file unit] must be a finite number > 0 "
                           "(0.001 for a file in millimetres, 0.01 for centimetres)");
+  }
+  if (!std::isfinite(options.reader_seconds) || options.reader_seconds < 0.0) {
+    return file_error(path, "reader_seconds = " + format(options.reader_seconds) +
+                                ": LoadOptions::reader_seconds [s] must be a finite number >= 0 (0: the default)");
   }
   Status readable = check_readable(path);
   if (!readable.ok()) return readable;
@@ -241,10 +249,25 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   if (!ply.ok()) return ply;
   Status off = check_off_file(path);
   if (!off.ok()) return off;
+  // assimp's COLLADA and glTF readers trust what no check here reads first (a stride of 2^32, a
+  // letter in an index list crashed or hung them): they read in a process of their own
+  if (*format == MeshFormat::kCollada || *format == MeshFormat::kGltf) {
+    std::error_code ignored;
+    const double megabytes = static_cast<double>(std::filesystem::file_size(path, ignored)) / 1e6;
+    ChildLimits limits;
+    limits.seconds = options.reader_seconds > 0.0 ? options.reader_seconds : 10.0 + 2.0 * megabytes;
+    limits.memory_bytes = default_memory_limit();
+    const std::string reader = *format == MeshFormat::kCollada ? "assimp's COLLADA reader" : "assimp's glTF reader";
+    return read_in_child(path, reader, limits, [&] { return read_with_assimp(path, options, *format); });
+  }
+  return read_with_assimp(path, options, *format);
+}
 
+// The file read by assimp's reader of its format, checked (load() has checked what it can first).
+Result<TriangleMesh> read_with_assimp(const std::string& path, const LoadOptions& options, MeshFormat format) {
   // No logger is created, so assimp stays quiet (its default logger discards everything).
   Assimp::Importer importer;
-  keep_only_readers_of(importer, *format);
+  keep_only_readers_of(importer, format);
   // keep the file's coordinates: other formats have no up axis, so none is imposed
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Read first without post-processing: validation rejects a point cloud (a mesh without faces)

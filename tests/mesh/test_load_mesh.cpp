@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -444,6 +445,46 @@ TEST_F(LoadMesh, GarbageIsReported) {
     const std::string path = write(name, garbage);
     expect_error(load_mesh(path), path);
   }
+}
+
+// assimp's COLLADA reader crashed on a stride of 2^32 and hung on a letter in an index list (issue
+// 30's mutants); it reads in a process of its own, so both are errors naming the file and the
+// reader, and the file around them still reads, its parts and all, through the same process.
+TEST_F(LoadMesh, ACrashOrHangOfTheColladaReaderIsAnError) {
+  const std::string good = tetrahedron_dae(kIdentity, kIdentity);
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::string crash = write("stride.dae", with("stride=\"3\"", "stride=\"4294967296\""));
+  LoadOptions patient;  // AddressSanitizer's report of the crash takes its time
+  patient.reader_seconds = 120.0;
+  const Result<TriangleMesh> crashed = load_mesh(crash, patient);
+  expect_error(crashed, crash, "assimp's COLLADA reader");
+  // a crash under AddressSanitizer ends the child by its report and exit code, not the signal
+  EXPECT_TRUE(crashed.message().find("crashed on it") != std::string::npos ||
+              crashed.message().find("stopped before it had read it") != std::string::npos)
+      << crashed.message();
+
+  const std::string hang = write("letter.dae", with("0 2 1 0 1 3", "0 2 1 0 x 3"));
+  LoadOptions quick;
+  quick.reader_seconds = 1.0;
+  const auto started = std::chrono::steady_clock::now();
+  expect_error(load_mesh(hang, quick), hang, "took more than 1 s on it and was stopped");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(), 20.0);
+
+  LoadOptions forever;
+  forever.reader_seconds = std::numeric_limits<double>::infinity();
+  expect_error(load_mesh(hang, forever), hang, "reader_seconds = inf");
+
+  const Result<TriangleMesh> mesh = load_mesh(write("tet.dae", good));
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  EXPECT_EQ(mesh->num_vertices(), 4);
+  EXPECT_EQ(mesh->num_triangles(), 4);
+  ASSERT_EQ(mesh->parts.size(), 1u);
+  EXPECT_EQ(mesh->parts[0].name, "tet");
+  EXPECT_DOUBLE_EQ(signed_volume(*mesh), 1.0 / 6.0);
 }
 
 // assimp's ASCII STL reader quotes the rest of the file after a bad number: one bad digit in a

@@ -14,6 +14,9 @@ namespace cubespring {
 struct LoadOptions {
   double scale = 1.0;  ///< multiplies every coordinate: 0.001 for a file in millimetres, 0.01 for
                        ///< centimetres [m per file unit], > 0 and finite.
+  /// The time the COLLADA and glTF readers may take, each in a process of its own [s]; 0: 10 s
+  /// plus 2 s a megabyte of file.
+  double reader_seconds = 0.0;
 };
 
 /// Reads a surface mesh file through assimp into one TriangleMesh in metres. The formats are a
@@ -35,10 +38,14 @@ struct LoadOptions {
 ///   metres by assimp when they declare a <unit>: load those with scale 1. A COLLADA <up_axis>
 ///   is ignored (no rotation is added). assimp (as packaged) reads coordinates and transforms as
 ///   32-bit floats: about 7 significant digits survive.
+/// - COLLADA and glTF files are read in a child process (fork) with a time and memory limit, so
+///   that a malformed one that crashes or hangs assimp's reader is an error, not the end of the
+///   caller (docs/voxelize.md section 1).
 ///
 /// Errors name the file: it cannot be opened, its format is off the list, assimp cannot read its format or reports a parse
-/// error, it has no triangles, a coordinate is not finite, a face refers to a missing vertex;
-/// or options.scale is not a finite number > 0.
+/// error, it has no triangles, a coordinate is not finite, a face refers to a missing vertex,
+/// the COLLADA or glTF reader crashed, overran its time or its memory; or options.scale is not a
+/// finite number > 0, or options.reader_seconds is negative or not finite.
 Result<TriangleMesh> load_mesh(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace cubespring
