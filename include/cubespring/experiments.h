@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "cubespring/model.h"
 #include "cubespring/result.h"
 #include "cubespring/state.h"
+#include "cubespring/static_solver.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
 namespace cubespring {
@@ -78,6 +80,8 @@ struct ExperimentSettings {
   /// Refuse a block whose static solve would take more memory than this [bytes]
   /// (estimate_block_factorisation, static_solver.h); 0: half this machine's memory.
   std::uint64_t max_memory_bytes = 0;
+  /// Called at each Newton iteration of the experiment's static solves (StaticSettings::progress).
+  std::function<void(const StaticProgress&)> progress;
 };
 
 /// One point of a finite-strain experiment's curve: the strain, the lattice's nominal (first

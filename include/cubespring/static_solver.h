@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "cubespring/constraints.h"
@@ -11,6 +12,13 @@
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
 namespace cubespring {
+
+/// Where a static solve is (StaticSettings::progress).
+struct StaticProgress {
+  double load_fraction = 0.0;  ///< of the load ramp reached by the increments done, in [0, 1]
+  int newton_iterations = 0;   ///< so far, in all increments
+  double residual = 0.0;       ///< the residual force before the last iteration's step [N]
+};
 
 struct StaticSettings {
   int initial_load_steps = 1;       ///< the load is applied in this many equal increments at first
@@ -27,6 +35,10 @@ struct StaticSettings {
   /// equilibrium of; 0 when it carried none) to full.
   bool start_from_state = false;
   double start_load_fraction = 0.0;  ///< in [0, 1]; read with start_from_state
+  /// Called as each load increment starts and at each Newton iteration, on the solving thread,
+  /// for a caller that shows how a long solve goes (each factorises the stiffness:
+  /// estimate_block_factorisation); empty: not called.
+  std::function<void(const StaticProgress&)> progress;
 };
 
 struct StaticReport {

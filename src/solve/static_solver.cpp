@@ -31,6 +31,7 @@ struct Problem {
   const Loads& full_loads;
   std::vector<std::uint8_t> driven;  // per degree of freedom
   bool held = false;                  // the driven dofs hold every rigid motion (holds_the_body)
+  double load_done = 0.0;             // the load fraction the increments done have reached
 };
 
 Loads scaled_loads(const Loads& loads, double factor) {
@@ -95,6 +96,7 @@ bool newton(const Problem& problem, const Loads& loads, double reference_force, 
     report.residual = r.norm();
     if (report.residual <= tolerance) return true;
     ++report.newton_iterations;
+    if (settings.progress) settings.progress({problem.load_done, report.newton_iterations, report.residual});
 
     // K dx = r on free dofs, identity rows on driven ones. The shift of kShiftFraction keeps a
     // free body's singular stiffness factorisable, and refinement removes its effect.
@@ -347,6 +349,7 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   // the load fraction at the ramp's parameter t in [0, 1]
   const double first_fraction = settings.start_from_state ? settings.start_load_fraction : 0.0;
   const auto load_fraction = [first_fraction](double t) { return first_fraction + t * (1.0 - first_fraction); };
+  problem.load_done = first_fraction;
   double done = 0.0;
   double increment = 1.0 / settings.initial_load_steps;
   const double smallest = 1.0 / settings.max_load_steps;
@@ -357,10 +360,12 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
       if (problem.driven[i]) trial(i) = start_driven(i) + next * (target(i) - start_driven(i));
     }
     report.message.clear();
+    if (settings.progress) settings.progress({problem.load_done, report.newton_iterations, report.residual});
     predict(problem, scaled_loads(loads, load_fraction(next)), *assembler, x, trial);
     if (stable_equilibrium(problem, scaled_loads(loads, load_fraction(next)), reference_force, settings, *assembler, trial, report)) {
       x = trial;
       done = next;
+      problem.load_done = load_fraction(done);
       ++report.load_steps;
       increment *= 1.5;  // grow again after a success
       continue;

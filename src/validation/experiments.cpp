@@ -121,7 +121,8 @@ double relative_error(double measured, double expected) { return (measured - exp
 
 // Affine shear u_p = gamma X_q imposed on every boundary node, interior free; the modulus is the
 // reaction on the face normal to q (the force the clamps apply there) per area, over gamma.
-Result<double> affine_shear_modulus(const Model& model, const Eigen::Vector3i& cells, int p, int q, double gamma) {
+Result<double> affine_shear_modulus(const Model& model, const Eigen::Vector3i& cells, int p, int q, double gamma,
+                                    const StaticSettings& static_settings) {
   Constraints constraints(model);
   for (int n = 0; n < model.num_nodes(); ++n) {
     const Eigen::Vector3i& index = model.node_grid_index[n];
@@ -131,7 +132,7 @@ Result<double> affine_shear_modulus(const Model& model, const Eigen::Vector3i& c
     if (Status s = constraints.prescribe_displacement(model, n, displacement); !s) return s;
   }
   State state = rest_state(model);
-  const StaticReport report = solve_static(model, constraints, Loads{}, StaticSettings{}, state);
+  const StaticReport report = solve_static(model, constraints, Loads{}, static_settings, state);
   if (!report.converged) return Status::error("shear: " + report.message);
   Eigen::Matrix3Xd forces;
   ForceWorkspace ws;
@@ -291,6 +292,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
   Loads loads;
   loads.nodal_forces = Eigen::Matrix3Xd::Zero(3, model.num_nodes());
   StaticSettings static_settings;
+  static_settings.progress = settings.progress;
 
   // loads and constraints
   switch (experiment) {
@@ -316,7 +318,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
         // three affine shears, one per plane, each its own solve
         Eigen::Vector3d moduli;
         for (int plane = 0; plane < 3; ++plane) {
-          Result<double> modulus = affine_shear_modulus(model, cells, (plane + 1) % 3, (plane + 2) % 3, settings.strain);
+          Result<double> modulus = affine_shear_modulus(model, cells, (plane + 1) % 3, (plane + 2) % 3, settings.strain, static_settings);
           if (!modulus) return modulus.status();
           moduli[plane] = modulus.value();
         }

@@ -160,6 +160,7 @@ Result<std::vector<CurvePoint>> finite_strain_curve(Experiment experiment, const
     // from the point before: a continuation, which also keeps to one branch where the lattice
     // has several equilibria
     StaticSettings static_settings;
+    static_settings.progress = settings.progress;
     static_settings.start_from_state = true;
     static_settings.initial_load_steps = k == 1 ? 4 : 1;
     const StaticReport report = solve_static(model, constraints.value(), Loads{}, static_settings, state);

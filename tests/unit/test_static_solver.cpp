@@ -143,6 +143,31 @@ TEST(StaticSolver, ContinuesFromAnEarlierSolution) {
   EXPECT_NE(refused.message.find("start_load_fraction"), std::string::npos) << refused.message;
 }
 
+// A long solve tells its caller where it is: as each increment starts and at each Newton
+// iteration (none failed here), the load done and the iterations never going back, the last
+// call's count the report's, its load fraction that of the increments before the last.
+TEST(StaticSolver, ReportsItsProgressAtEachIncrementAndIteration) {
+  const Compressed c = squeezed_cube(3, -0.2);
+  StaticSettings settings;
+  settings.initial_load_steps = 4;
+  std::vector<StaticProgress> calls;
+  settings.progress = [&calls](const StaticProgress& at) { calls.push_back(at); };
+  State state = rest_state(c.model);
+  const StaticReport report = solve_static(c.model, c.constraints, Loads{}, settings, state);
+  ASSERT_TRUE(report.converged) << report.message;
+  // an increment's start, and each iteration of it
+  EXPECT_EQ(static_cast<int>(calls.size()), report.load_steps + report.newton_iterations);
+  ASSERT_FALSE(calls.empty());
+  EXPECT_EQ(calls.front().load_fraction, 0.0);
+  EXPECT_EQ(calls.back().newton_iterations, report.newton_iterations);
+  for (std::size_t i = 1; i < calls.size(); ++i) {
+    EXPECT_GE(calls[i].load_fraction, calls[i - 1].load_fraction);
+    EXPECT_GE(calls[i].newton_iterations, calls[i - 1].newton_iterations);
+  }
+  EXPECT_LT(calls.back().load_fraction, 1.0);  // the last increment's own iterations
+  EXPECT_GE(report.load_steps, 2);
+}
+
 // The homogeneous uniaxial state between the platens, the law's own (its lateral stretch), is a
 // stable equilibrium at 40% compression for exact-bending cells, and a neutral one (their
 // zero-energy modes, nothing below zero) for the paper's: the edges' share of the cell term on
