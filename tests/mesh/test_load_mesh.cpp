@@ -487,6 +487,30 @@ TEST_F(LoadMesh, ACrashOrHangOfTheColladaReaderIsAnError) {
   EXPECT_DOUBLE_EQ(signed_volume(*mesh), 1.0 / 6.0);
 }
 
+// glTF reads in a process of its own too: the tetrahedron (its buffer inline, as base64) comes
+// back whole, and an accessor past its buffer is assimp's own error, passed on.
+TEST_F(LoadMesh, GltfReadsThroughItsOwnProcess) {
+  const std::string tetrahedron =
+      R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0, "name": "tet"}],)"
+      R"( "meshes": [{"name": "tet", "primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],)"
+      R"( "buffers": [{"byteLength": 72, "uri": "data:application/octet-stream;base64,)"
+      R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAACAAEAAAABAAMAAAADAAIAAQACAAMA"}],)"
+      R"( "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 24}],)"
+      R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0],)"
+      R"( "max": [1, 1, 1]}, {"bufferView": 1, "componentType": 5123, "count": COUNT, "type": "SCALAR"}]})";
+  std::string good = tetrahedron, past = tetrahedron;
+  good.replace(good.find("COUNT"), 5, "12");
+  past.replace(past.find("COUNT"), 5, "4000000000");
+  const Result<TriangleMesh> mesh = load_mesh(write("tet.gltf", good));
+  ASSERT_TRUE(mesh.ok()) << mesh.message();
+  EXPECT_EQ(mesh->num_triangles(), 4);
+  ASSERT_EQ(mesh->parts.size(), 1u);
+  EXPECT_EQ(mesh->parts[0].name, "tet");
+  EXPECT_DOUBLE_EQ(signed_volume(*mesh), 1.0 / 6.0);
+  const std::string path = write("past.gltf", past);
+  expect_error(load_mesh(path), path, "out of range");
+}
+
 // assimp's ASCII STL reader quotes the rest of the file after a bad number: one bad digit in a
 // 5,000-facet file gave a 700 kB message
 TEST_F(LoadMesh, AReaderMessageQuotingTheFileIsCutShort) {
