@@ -2,19 +2,19 @@
 # SPDX-FileCopyrightText: 2026 cubespring authors
 # SPDX-License-Identifier: MIT
 # Fuzzes load_mesh with libFuzzer (clang and Debian's libclang-rt-dev) for each mesh format that
-# load_mesh checks before assimp reads it: scripts/fuzz.sh [SECONDS per format, default 240]
-# [FORMAT ...] (ply off). Needs the release build (scripts/setup.sh release) for the core library.
+# load_mesh checks before assimp reads it, or reads in a bounded process of its own:
+# scripts/fuzz.sh [SECONDS per format, default 240] [FORMAT ...] (ply off dae gltf). Needs the release build (scripts/setup.sh release) for the core library.
 # A crash or a hang (over 10 s) stops the run and leaves the input in build/fuzz/; add it to
 # tests/mesh/test_load_mesh.cpp as a case once load_mesh refuses it. Not run by CI.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-240}
 shift || true
-formats=("${@:-ply off}")
+formats=("${@:-ply off dae gltf}")
 compiler=$(command -v clang++-16 || command -v clang++-14 || command -v clang++)
 mkdir -p build/fuzz
 "$compiler" -std=c++17 -O1 -g -fsanitize=fuzzer,address -Iinclude -I/usr/include/eigen3 \
-  tests/fuzz/fuzz_load_mesh.cpp src/mesh/load_mesh.cpp src/mesh/ply_file.cpp src/mesh/off_file.cpp \
+  tests/fuzz/fuzz_load_mesh.cpp src/mesh/*.cpp \
   build/release/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_load_mesh
 for format in ${formats[@]}; do
   corpus=build/fuzz/corpus_$format

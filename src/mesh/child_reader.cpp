@@ -23,6 +23,19 @@
 namespace cubespring {
 namespace {
 
+// GCC says -fsanitize=address by __SANITIZE_ADDRESS__, clang (before 17) by __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSanitizer = true;
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+#else
+constexpr bool kAddressSanitizer = false;
+#endif
+
 // What the child sends: a letter that says which, then the message or the mesh.
 constexpr char kMesh = 'M', kError = 'E';
 
@@ -138,12 +151,13 @@ std::string gigabytes(std::uint64_t bytes) {
 [[noreturn]] void run_child(int out, const std::string& path, const std::string& reader, const ChildLimits& limits,
                             const std::function<Result<TriangleMesh>()>& read) {
   // AddressSanitizer maps terabytes of shadow memory: a limit on the address space would stop it
-#if !defined(__SANITIZE_ADDRESS__)
-  if (limits.memory_bytes > 0) {
+  if (limits.memory_bytes > 0 && !kAddressSanitizer) {
     const rlimit limit{limits.memory_bytes, limits.memory_bytes};
     (void)setrlimit(RLIMIT_AS, &limit);
   }
-#endif
+  // a fault ends the child by its signal, which the parent reports: not by the handlers a
+  // sanitizer or fuzzer installed in the caller, which would report it as the caller's own
+  for (const int signal : {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT}) std::signal(signal, SIG_DFL);
   std::string bytes;
   try {
     bytes = encode(read());
