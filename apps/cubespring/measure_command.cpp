@@ -289,8 +289,10 @@ void announce_long_solves(ExperimentSettings& settings) {
   if (seconds < 5.0) return;
   settings.progress = [start = std::chrono::steady_clock::now()](const StaticProgress& at) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::fprintf(stderr, "measure: %.0f%% of the load done, %d Newton iterations, residual %.3g N, %.0f s so far\n",
-                 100.0 * at.load_fraction, at.newton_iterations, at.residual, elapsed);
+    std::fprintf(stderr, "measure: %.0f%% of the load done, %d Newton iterations", 100.0 * at.load_fraction,
+                 at.newton_iterations);
+    if (at.newton_iterations > 0) std::fprintf(stderr, ", residual %.3g N", at.residual);
+    std::fprintf(stderr, ", %.0f s so far\n", elapsed);
   };
   std::fprintf(stderr,
                "measure: %d x %d x %d cells: each factorisation of the stiffness (one a Newton iteration) "
