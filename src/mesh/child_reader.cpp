@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #include "child_reader.h"
 
+#include <fcntl.h>
 #include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <functional>
 #include <new>
 #include <optional>
@@ -148,12 +150,25 @@ std::string gigabytes(std::uint64_t bytes) {
   return out.str();
 }
 
+// This process's address space [bytes] (/proc/self/statm: its size in pages first).
+std::optional<std::uint64_t> address_space_in_use() {
+  std::ifstream statm("/proc/self/statm");
+  std::uint64_t pages = 0;
+  const long page_size = ::sysconf(_SC_PAGESIZE);
+  if (!(statm >> pages) || page_size <= 0) return std::nullopt;
+  return pages * static_cast<std::uint64_t>(page_size);
+}
+
 [[noreturn]] void run_child(int out, const std::string& path, const std::string& reader, const ChildLimits& limits,
                             const std::function<Result<TriangleMesh>()>& read) {
-  // AddressSanitizer maps terabytes of shadow memory: a limit on the address space would stop it
+  // the address space it has from the caller, and memory_bytes more: the caller's own (a
+  // simulator's gigabytes) must not count against the reader. AddressSanitizer maps terabytes of
+  // shadow memory, which a limit on the address space would deny it.
   if (limits.memory_bytes > 0 && !kAddressSanitizer) {
-    const rlimit limit{limits.memory_bytes, limits.memory_bytes};
-    (void)setrlimit(RLIMIT_AS, &limit);
+    if (const std::optional<std::uint64_t> used = address_space_in_use()) {
+      const rlimit limit{*used + limits.memory_bytes, *used + limits.memory_bytes};
+      (void)setrlimit(RLIMIT_AS, &limit);
+    }
   }
   // a fault ends the child by its signal, which the parent reports: not by the handlers a
   // sanitizer or fuzzer installed in the caller, which would report it as the caller's own
@@ -176,7 +191,9 @@ std::string gigabytes(std::uint64_t bytes) {
 Result<TriangleMesh> read_in_child(const std::string& path, const std::string& reader, const ChildLimits& limits,
                                    const std::function<Result<TriangleMesh>()>& read) {
   std::array<int, 2> pipe_ends{};
-  if (::pipe(pipe_ends.data()) != 0) {
+  // not inherited by a program another thread of the caller starts meanwhile, which would hold
+  // the pipe open after the child is done
+  if (::pipe2(pipe_ends.data(), O_CLOEXEC) != 0) {
     return Status::error(path + ": cannot start a process for " + reader + ": " + std::strerror(errno));
   }
   const pid_t child = ::fork();
