@@ -252,8 +252,9 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   // assimp's COLLADA and glTF readers trust what no check here reads first (a stride of 2^32, a
   // letter in an index list crashed or hung them): they read in a process of their own
   if (*format == MeshFormat::kCollada || *format == MeshFormat::kGltf) {
-    std::error_code ignored;
-    const double megabytes = static_cast<double>(std::filesystem::file_size(path, ignored)) / 1e6;
+    std::error_code failed;  // (it was readable a moment ago; were its size unknown, none is added)
+    const std::uintmax_t size = std::filesystem::file_size(path, failed);
+    const double megabytes = failed ? 0.0 : static_cast<double>(size) / 1e6;
     ChildLimits limits;
     limits.seconds = options.reader_seconds > 0.0 ? options.reader_seconds : 10.0 + 2.0 * megabytes;
     limits.memory_bytes = default_memory_limit();
