@@ -40,8 +40,10 @@ std::vector<double> interleaved_best_times(double min_seconds, const std::vector
 }
 
 ExplicitStepper::ExplicitStepper(const Model& model, const Constraints& constraints, const Loads& loads,
-                                 const State& start, Integrator integrator, int threads, double time_step)
+                                 const State& start, Integrator integrator, int threads, double time_step,
+                                 double min_grid_fill)
     : model_(model), constraints_(constraints), loads_(loads), state_(start), stepper_(model) {
+  settings_.min_grid_fill = min_grid_fill;
   settings_.integrator = integrator;
   settings_.threads = threads;
   settings_.time_step = time_step;

@@ -33,11 +33,12 @@ std::vector<double> interleaved_best_times(double min_seconds, const std::vector
 
 /// One explicit step of a body per call, of time_step [s]; the model, constraints and loads must
 /// outlive it. (The stable step is the caller's to find once: max_stable_time_step() assembles
-/// the body's stiffness, which costs more than thousands of steps.)
+/// the body's stiffness, which costs more than thousands of steps.) min_grid_fill chooses the
+/// force passes (StepSettings::min_grid_fill: 0 the grid whenever it can, NaN the spring lists).
 class ExplicitStepper {
  public:
   ExplicitStepper(const Model& model, const Constraints& constraints, const Loads& loads, const State& start,
-                  Integrator integrator, int threads, double time_step);
+                  Integrator integrator, int threads, double time_step, double min_grid_fill = kDefaultMinGridFill);
   void operator()();
 
  private:

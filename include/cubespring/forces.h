@@ -24,7 +24,17 @@ struct Loads {
 struct ForceOptions {
   bool damping = true;  ///< Rayleigh damping from the velocities
   int threads = 1;      ///< threads for the force passes; the result does not depend on it
+  /// The body goes on the grid passes when its cells fill at least this fraction of their
+  /// bounding box (0: whenever the lattice allows; above 1, or NaN: never) and on the spring
+  /// lists otherwise; both give the same forces to rounding. The grid costs about 280 bytes per
+  /// point of the box, however few of them the body holds; a box of more than 2^31 points gets
+  /// no grid. Keep it the same between calls on one workspace: a change rebuilds the grid.
+  double min_grid_fill = kDefaultMinGridFill;
 };
+
+/// Whether compute_forces() with these options puts the model on the grid passes (it builds
+/// the grid to find out: for tests and benchmarks, not for a step).
+bool uses_grid_passes(const Model& model, const ForceOptions& options = {});
 
 /// How the grid passes share a body's z-layers among threads (src/forces/grid/grid_forces.cpp): threads go in
 /// pairs, each pair's region of layers swept by one thread from the bottom and the other from the
@@ -44,7 +54,13 @@ struct GridSplit {
   bool fixed = false;
 };
 
-/// Scratch arrays of the force passes, kept between calls so that a step allocates nothing.
+struct ForceEngine;  // internal: src/forces/force_engine.h
+
+/// The force engine of one body and the scratch arrays of its passes, kept between calls so that
+/// a step allocates nothing. The engine (the thread blocks, the grid layout) is built from the
+/// model on the first call and rebuilt when Model::revision, the model's counts or
+/// ForceOptions::min_grid_fill change; one workspace may serve several bodies in turn, at the
+/// cost of a rebuild at each change.
 struct ForceWorkspace {
   Eigen::Matrix3Xd spring_vector;         ///< x of the second node minus x of the first [m]
   std::vector<double> spring_length;      ///< current length [m]
@@ -61,6 +77,7 @@ struct ForceWorkspace {
   std::vector<int> crushed_corners;       ///< nodes of the crushed cells, when the grid passes kicked
   std::shared_ptr<const void> grid_arrays_layout;  ///< the grid layout grid_arrays belong to
   GridSplit grid_split;                   ///< how the grid passes share the layers among threads
+  std::shared_ptr<const ForceEngine> engine;  ///< built from the model by the passes
   void resize(const Model& model);
 };
 
@@ -85,7 +102,5 @@ double cell_signed_volume(const Model& model, const Eigen::Matrix3Xd& positions,
 /// A cell counts as crushed, and its inversion recovery acts, when its signed volume falls below
 /// this fraction of its rest volume (docs/model-baudet2007.md section 5).
 inline constexpr double kCrushedVolumeFraction = 0.2;
-/// Inversion recovery stiffness as a multiple of the cell material's Young's modulus.
-inline constexpr double kInversionStiffnessFactor = 10.0;
 
 }  // namespace cubespring

@@ -39,6 +39,9 @@ struct StepSettings {
   /// is above the body's stable step (max_stable_time_step() finds it). A caller that derived the
   /// step from that limit itself (the Bullet plugin) sets false and names the cause in its terms.
   bool caller_chose_time_step = true;
+  /// The fill of its bounding box from which the body steps on the grid passes
+  /// (ForceOptions::min_grid_fill: 0 whenever the lattice allows, NaN never).
+  double min_grid_fill = kDefaultMinGridFill;
 };
 
 enum class StepStatus {
@@ -67,7 +70,7 @@ struct StepReport {
 /// steps, so an explicit step allocates nothing after the first one (an implicit step assembles
 /// into a kept sparsity pattern but allocates its CG vectors). One stepper per body: a body of
 /// other counts is refused (invalid-input). A body's spring stiffnesses and cell corrections
-/// may change between steps: each step reads them (after a change, update_grid_layout(), as
+/// may change between steps: each step reads them (after a change, model.mark_changed(), as
 /// model.h says).
 class Stepper {
  public:

@@ -4,7 +4,6 @@
 
 #include <array>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,15 +22,13 @@ inline constexpr int kCornersPerCell = 8;
 inline constexpr int kEdgesPerCell = 12;
 inline constexpr int kEdgesPerAxis = 4;
 
-struct GridLayout;  // internal: src/forces/grid/grid_layout.h
-
 /// The constant part of a simulated body: topology, rest state, masses and stiffnesses. Built once
 /// by build_model(); the time-varying part lives in State. Arrays are flat, one entry per item.
 struct Model {
   CellModel cell_model = CellModel::kBaudet2007;
   /// kNeoHookean: each cell's correction and inversion recovery are replaced by the neo-Hookean
-  /// cell term of law_constants (cell_correction and cell_inversion_stiffness are zero); such a
-  /// body steps on the spring lists (the grid passes have no neo-Hookean term yet).
+  /// cell term of law_constants (cell_correction and cell_inversion_stiffness are zero); both the
+  /// spring lists and the grid passes have the term.
   CellLaw cell_law = CellLaw::kSprings;
   /// Per material: the neo-Hookean cell term's constants (empty for kSprings).
   std::vector<NeoHookeanConstants> law_constants;
@@ -91,18 +88,15 @@ struct Model {
   bool has_stiffness_damping = false;  ///< some material has beta > 0
   bool has_mass_damping = false;       ///< some material has alpha > 0
 
-  /// Blocks of the force pass (docs/data-layout.md): block b holds the springs whose first node is
-  /// in force_block_nodes[b] .. [b+1]-1; their second nodes stay below force_block_reach[b], which
-  /// is at most the end of block b+1. Threads take whole blocks, and the count depends on the body
-  /// alone, so forces do not depend on the thread count. Empty: one block of every node.
-  std::vector<int> force_block_nodes;
-  std::vector<int> force_block_reach;
-
-  /// The body on the dense grid of its bounding box, which the explicit force passes use instead
-  /// of the spring lists when the body fills at least kDefaultMinGridFill of the box
-  /// (docs/data-layout.md); null otherwise. Built by build_model() from the arrays above, it
-  /// keeps its own copy of the stiffnesses: after changing them, call update_grid_layout().
-  std::shared_ptr<const GridLayout> grid_layout;
+  /// Which version of these arrays this is: build_model() and mark_changed() give a number no
+  /// other model of this process has had. Whoever steps the model keeps a force engine built
+  /// from it (its thread blocks and, for a body that fills its box, its grid with its own copy
+  /// of the stiffnesses: forces.h, ForceWorkspace) and rebuilds it when the revision or the
+  /// node, spring or cell count changes. A copy keeps the revision: its arrays are the same.
+  std::uint64_t revision = 0;
+  /// After changing a built model's arrays in place (stiffnesses, damping, corrections,
+  /// materials' constants), call this once so that every engine built from it is rebuilt.
+  void mark_changed();
 
   int num_nodes() const { return static_cast<int>(rest_positions.cols()); }
   int num_springs() const { return static_cast<int>(spring_nodes.size()); }
@@ -120,13 +114,18 @@ struct Model {
   std::vector<std::int64_t> sorted_node_keys_;  // grid key of each node, ascending (= node order)
 };
 
+/// Inversion recovery stiffness as a multiple of the cell material's Young's modulus
+/// (Model::cell_inversion_stiffness; the recovery acts in the force passes, forces.h).
+inline constexpr double kInversionStiffnessFactor = 10.0;
+
 /// Validates the description (cell size, materials, cell indices, the model's validity for the
 /// cell shape, at most kMaxCells cells) and builds the model. Errors name the value at fault and the allowed range.
 Result<Model> build_model(const LatticeDesc& desc);
 
-/// The fraction of its bounding box's cells a body fills at least for build_model() to put it on
-/// the grid passes: from it the grid stepped every benched body faster, below it the spring lists
-/// stepped some faster (`cubespring bench-layout`, docs/data-layout.md).
+/// The fraction of its bounding box's cells a body fills at least for the force passes to put it
+/// on the grid passes (ForceOptions::min_grid_fill's default): from it the grid stepped every
+/// benched body faster, below it the spring lists stepped some faster (`cubespring bench-layout`,
+/// docs/data-layout.md).
 inline constexpr double kDefaultMinGridFill = 0.45;
 
 /// The fewest nodes a layer across the box's longest axis holds for build_model() to number the
@@ -135,13 +134,11 @@ inline constexpr double kDefaultMinGridFill = 0.45;
 /// shorter layers cannot repay (`docs/data-layout.md`).
 inline constexpr int kMinMajorLayerNodes = 256;
 
-/// Rebuilds model.grid_layout from the model's arrays, after a change to a built model's
-/// stiffnesses, damping or corrections. The grid is built when the cells fill at least min_fill
-/// of their bounding box (0: whenever the lattice allows; above 1, or NaN: never) and the
-/// spring lists are used otherwise; both give the same forces to rounding. The grid costs about
-/// 280 bytes per point of the box, however few of them the body holds; a box of more than 2^31
-/// points gets no grid. A grid forced with a small min_fill is dropped again by a later call
-/// with the default.
+/// Deprecated: the force engine (the grid layout among it) is no longer part of the model but
+/// is built by whoever steps it, and rebuilt when the model's revision changes. This calls
+/// model.mark_changed(); min_fill is ignored (the grid's fill is ForceOptions::min_grid_fill and
+/// StepSettings::min_grid_fill now).
+[[deprecated("call model.mark_changed(); choose the grid with ForceOptions::min_grid_fill")]]
 void update_grid_layout(Model& model, double min_fill = kDefaultMinGridFill);
 
 /// Per-cell spring stiffnesses and correction of one material and cell shape

@@ -16,7 +16,7 @@ constexpr int kMaxBlocks = 16;
 constexpr int kMinBlockSpans = 4;
 
 // Node ranges of about equal spring counts; false when some block's springs reach past the next.
-bool try_split(Model& model, int blocks) {
+bool try_split(const Model& model, int blocks, ForceBlocks& split) {
   const int num_nodes = model.num_nodes();
   const int num_springs = model.num_springs();
   std::vector<int> nodes(blocks + 1, num_nodes);
@@ -37,16 +37,16 @@ bool try_split(Model& model, int blocks) {
     }
     if (b + 2 <= blocks && reach[b] > nodes[std::min(b + 2, blocks)]) return false;
   }
-  model.force_block_nodes = std::move(nodes);
-  model.force_block_reach = std::move(reach);
+  split.nodes = std::move(nodes);
+  split.reach = std::move(reach);
   return true;
 }
 
 }  // namespace
 
-void split_force_blocks(Model& model) {
-  model.force_block_nodes.clear();
-  model.force_block_reach.clear();
+ForceBlocks split_force_blocks(const Model& model) {
+  ForceBlocks split;
+  split.num_nodes = model.num_nodes();
   int span = 1;
   for (const auto& ends : model.spring_nodes) span = std::max(span, ends[1] - ends[0]);
   int blocks = 1;
@@ -55,9 +55,10 @@ void split_force_blocks(Model& model) {
     blocks *= 2;
   }
   for (; blocks > 1; blocks /= 2) {
-    if (try_split(model, blocks)) return;
+    if (try_split(model, blocks, split)) return split;
   }
-  (void)try_split(model, 1);
+  (void)try_split(model, 1, split);
+  return split;
 }
 
 }  // namespace cubespring

@@ -26,7 +26,7 @@
 #include <string>
 
 #include "forces/drive_nodes.h"
-#include "forces/force_blocks.h"
+#include "forces/force_engine.h"
 #include "forces/force_passes.h"
 #include "forces/grid/grid_forces.h"
 #include "forces/input_checks.h"
@@ -259,9 +259,10 @@ inline int first_cell_from_node(const Model& model, int n) {
 // complete once its own springs are done, and goes to finish(n), which returns a squared speed.
 template <typename Finish>
 double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const Finish& finish) {
-  const int begin = force_block_begin(model, b);
-  const int end = force_block_end(model, b);
-  const int settled = b > 0 ? force_block_reach(model, b - 1) : begin;
+  const ForceBlocks& blocks = ws.engine->blocks;
+  const int begin = blocks.begin(b);
+  const int end = blocks.end(b);
+  const int settled = b > 0 ? blocks.reach_of(b - 1) : begin;
   Eigen::Matrix3Xd& halo = ws.block_halo[b];
   double fastest_sq = 0.0;
   for (int n = begin; n < end; ++n) {
@@ -284,12 +285,14 @@ double scatter_block(const Model& model, int b, ForceWorkspace& ws, Eigen::Matri
 
 // The nodes of block b that the previous block's springs reach: their halo, then finish(n).
 template <typename Finish>
-double settle_halo(const Model& model, int b, const ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const Finish& finish) {
+double settle_halo(int b, const ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const Finish& finish) {
+  const ForceBlocks& blocks = ws.engine->blocks;
   if (b == 0) return 0.0;
-  const int begin = force_block_begin(model, b);
+  const int begin = blocks.begin(b);
+  const int reach = blocks.reach_of(b - 1);
   const Eigen::Matrix3Xd& halo = ws.block_halo[b - 1];
   double fastest_sq = 0.0;
-  for (int n = begin; n < force_block_reach(model, b - 1); ++n) {
+  for (int n = begin; n < reach; ++n) {
     forces.col(n) += halo.col(n - begin);
     fastest_sq = faster(finish(n), fastest_sq);
   }
@@ -312,13 +315,14 @@ void apply_inversion_forces(const Model& model, const Eigen::Matrix3Xd& x, const
 }
 
 void prepare(const Model& model, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
-  const int blocks = num_force_blocks(model);
+  const ForceBlocks& split = engine_blocks(model, ws).blocks;  // resize keeps this engine
+  const int blocks = split.count();
   if (ws.spring_vector.cols() != model.num_springs() || ws.cell_tension.cols() != model.num_cells() ||
       static_cast<int>(ws.block_halo.size()) != blocks) {
     ws.resize(model);
   }
   for (int b = 0; b < blocks; ++b) {
-    const Eigen::Index halo = std::max(0, force_block_reach(model, b) - force_block_end(model, b));
+    const Eigen::Index halo = std::max(0, split.reach_of(b) - split.end(b));
     if (ws.block_halo[b].cols() != halo) ws.block_halo[b].resize(3, halo);
   }
   if (forces.cols() != model.num_nodes()) forces.resize(3, model.num_nodes());
@@ -331,9 +335,10 @@ template <bool kWithCornerForces, typename Finish, typename Barrier>
 void run_block_passes(const Model& model, const State& state, bool with_rate, int begin_block, int end_block,
                       bool first_share, const Barrier& barrier, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
                       const Finish& finish) {
+  const ForceBlocks& blocks = ws.engine->blocks;
   for (int b = begin_block; b < end_block; ++b) {
-    const int begin = force_block_begin(model, b);
-    const int end = force_block_end(model, b);
+    const int begin = blocks.begin(b);
+    const int end = blocks.end(b);
     forces.middleCols(begin, end - begin).setZero();
     ws.block_halo[b].setZero();
     const int first = model.node_first_spring[begin];
@@ -347,15 +352,15 @@ void run_block_passes(const Model& model, const State& state, bool with_rate, in
   barrier();
   for (int b = begin_block; b < end_block; ++b) {
     // the cells whose corner 0 is in the block, so that their corner forces stay in its nodes
-    const int first_cell = first_cell_from_node(model, force_block_begin(model, b));
-    const int last_cell = first_cell_from_node(model, force_block_end(model, b));
-    const CornerTarget target{forces, ws.block_halo[b], force_block_end(model, b)};
+    const int first_cell = first_cell_from_node(model, blocks.begin(b));
+    const int last_cell = first_cell_from_node(model, blocks.end(b));
+    const CornerTarget target{forces, ws.block_halo[b], blocks.end(b)};
     ws.block_crushed[b] =
         any_cell_pass(model, with_rate, first_cell, last_cell, ws, kWithCornerForces ? &target : nullptr);
   }
   barrier();
   int crushed = 0;
-  for (int b = 0; b < num_force_blocks(model); ++b) crushed += ws.block_crushed[b];
+  for (int b = 0; b < blocks.count(); ++b) crushed += ws.block_crushed[b];
   if (crushed > 0) {
     if (first_share) apply_inversion_forces(model, state.positions, ws, forces);
     barrier();
@@ -363,7 +368,7 @@ void run_block_passes(const Model& model, const State& state, bool with_rate, in
   for (int b = begin_block; b < end_block; ++b) ws.block_fastest[b] = scatter_block(model, b, ws, forces, finish);
   barrier();
   for (int b = begin_block; b < end_block; ++b) {
-    ws.block_fastest[b] = faster(settle_halo(model, b, ws, forces, finish), ws.block_fastest[b]);
+    ws.block_fastest[b] = faster(settle_halo(b, ws, forces, finish), ws.block_fastest[b]);
   }
 }
 
@@ -374,7 +379,7 @@ template <bool kWithCornerForces, typename Finish>
 double run_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                   Eigen::Matrix3Xd& forces, const Finish& finish) {
   prepare(model, ws, forces);
-  const int blocks = num_force_blocks(model);
+  const int blocks = ws.engine->blocks.count();
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const int threads = std::max(1, std::min(options.threads, blocks));
   run_shares(threads, [&](int share, int shares, const auto& barrier) {
@@ -447,7 +452,7 @@ double redo_crushed_corners(const Model& model, const State& state, ForceWorkspa
   }
   std::sort(corners.begin(), corners.end());
   corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
-  for (int n : corners) forces.col(n) = grid_spring_force(*model.grid_layout, ws.grid_arrays, n);
+  for (int n : corners) forces.col(n) = grid_spring_force(*ws.engine->grid, ws.grid_arrays, n);
   apply_inversion_forces(model, state.positions, ws, forces);
   for (int n : corners) (void)finish(n);
   return fastest_after_kick(model, forces, kick);
@@ -461,14 +466,14 @@ template <typename Finish>
 double grid_passes(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick) {
   prepare(model, ws, forces);
-  if (ws.grid_arrays_layout != model.grid_layout) {  // another body's arrays: start afresh
+  if (ws.grid_arrays_layout != ws.engine->grid) {  // another body's arrays: start afresh
     ws.grid_arrays.clear();
     ws.grid_split = GridSplit{};
-    ws.grid_arrays_layout = model.grid_layout;
+    ws.grid_arrays_layout = ws.engine->grid;
   }
   const bool with_rate = options.damping && model.has_stiffness_damping;
   const GridForces grid =
-      grid_spring_forces(*model.grid_layout, state, with_rate, options.threads, ws.grid_arrays, ws.grid_split, forces,
+      grid_spring_forces(*ws.engine->grid, state, with_rate, options.threads, ws.grid_arrays, ws.grid_split, forces,
                          kick);
   if (kick != nullptr) {
     if (grid.crushed == 0) return grid.fastest_sq;
@@ -478,11 +483,12 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
     find_crushed_cells(model, state, ws);
     apply_inversion_forces(model, state.positions, ws, forces);
   }
-  const int blocks = num_force_blocks(model);
-  const int threads = std::min(grid_threads(*model.grid_layout, options.threads), blocks);
+  const ForceBlocks& split = ws.engine->blocks;
+  const int blocks = split.count();
+  const int threads = std::min(grid_threads(*ws.engine->grid, options.threads), blocks);
   const auto finish_block = [&](int b) {
     double fastest_sq = 0.0;
-    for (int n = force_block_begin(model, b); n < force_block_end(model, b); ++n) {
+    for (int n = split.begin(b); n < split.end(b); ++n) {
       fastest_sq = faster(finish(n), fastest_sq);
     }
     ws.block_fastest[b] = fastest_sq;
@@ -498,7 +504,9 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
 template <typename Finish>
 double force_sweep(const Model& model, const State& state, const ForceOptions& options, ForceWorkspace& ws,
                    Eigen::Matrix3Xd& forces, const Finish& finish, const GridKick* kick = nullptr) {
-  if (model.grid_layout) return grid_passes(model, state, options, ws, forces, finish, kick);
+  if (engine_with_grid(model, options.min_grid_fill, ws).grid) {
+    return grid_passes(model, state, options, ws, forces, finish, kick);
+  }
   const bool corner_forces = model.has_twist || model.cell_law == CellLaw::kNeoHookean;
   return corner_forces ? run_passes<true>(model, state, options, ws, forces, finish)
                          : run_passes<false>(model, state, options, ws, forces, finish);
@@ -514,6 +522,7 @@ void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorksp
 }
 
 void ForceWorkspace::resize(const Model& model) {
+  const ForceEngine& own = engine_blocks(model, *this);
   const auto num_springs = static_cast<std::size_t>(model.num_springs());
   spring_vector.resize(3, model.num_springs());
   spring_length.resize(num_springs);
@@ -523,7 +532,7 @@ void ForceWorkspace::resize(const Model& model) {
   spring_tension.resize(num_springs);
   cell_tension.resize(3, model.num_cells());
   cell_crushed.resize(model.num_cells());
-  const auto blocks = static_cast<std::size_t>(num_force_blocks(model));
+  const auto blocks = static_cast<std::size_t>(own.blocks.count());
   block_halo.resize(blocks);
   block_crushed.resize(blocks);
   block_fastest.resize(blocks);

@@ -5,12 +5,10 @@
 #include "cubespring/model.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
-#include "cubespring/forces.h"
-#include "forces/force_blocks.h"
-#include "forces/grid/grid_layout.h"
 #include "model/cell_geometry.h"
 #include "model/neo_hookean_cell.h"
 
@@ -106,6 +104,14 @@ struct EdgeRecord {
 };
 
 }  // namespace
+
+void Model::mark_changed() {
+  // one counter for the process: two models never share a revision unless one is the other's copy
+  static std::atomic<std::uint64_t> next_revision{1};
+  revision = next_revision.fetch_add(1, std::memory_order_relaxed);
+}
+
+void update_grid_layout(Model& model, double /*min_fill*/) { model.mark_changed(); }
 
 int Model::node_at(const Eigen::Vector3i& grid_index) const {
   const std::int64_t key = grid_key(grid_index, major_axis);
@@ -298,8 +304,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.has_mass_damping |= material.mass_damping > 0.0;
   }
 
-  split_force_blocks(model);
-  model.grid_layout = build_grid_layout(model);
+  model.mark_changed();
   return model;
 }
 

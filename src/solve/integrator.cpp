@@ -140,7 +140,7 @@ StepReport Stepper::check(const Model& model, const StepSettings& settings, doub
 StepReport Stepper::explicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                                   const StepSettings& settings, State& state) {
   const double dt = settings.time_step;
-  const ForceOptions options{true, settings.threads};
+  const ForceOptions options{true, settings.threads, settings.min_grid_fill};
   if (candidate_.positions.cols() != model.num_nodes()) candidate_ = state;
   double fastest_sq = 0.0;
   if (settings.integrator == Integrator::kSymplecticEuler) {
@@ -195,7 +195,8 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
     }
   }
 
-  compute_forces(model, state, loads, ForceOptions{false, settings.threads}, workspace_, forces_);
+  const ForceOptions without_damping{false, settings.threads, settings.min_grid_fill};
+  compute_forces(model, state, loads, without_damping, workspace_, forces_);
   assembler_->assemble(model, state.positions, StiffnessKind::kPositiveSemiDefinite, dt * dt, dt, system_,
                        settings.threads);
 

@@ -76,7 +76,7 @@ TEST(Experiments, SpringsAloneMissTheModuliAsTheNotesPredict) {
   Result<Model> model = build_model(desc);
   ASSERT_TRUE(model.ok());
   for (auto& d : model->cell_correction) d.setZero();
-  update_grid_layout(*model);
+  model->mark_changed();
   // uniaxial load of the paper's experiment, by hand on the springs-only model
   Loads loads;
   loads.nodal_forces = Eigen::Matrix3Xd::Zero(3, model->num_nodes());

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include "cubespring/forces.h"
+#include "forces/force_engine.h"
 #include "forces/grid/grid_forces.h"
 #include "forces/grid/grid_layout.h"
 #include "test_support.h"
@@ -27,6 +28,21 @@ namespace cubespring {
 namespace {
 
 using test::elastic_forces;
+using test::on_spring_lists;
+
+// Gives the workspace the model's engine on the spring lists with one block of every node.
+void use_one_block(const Model& model, ForceWorkspace& ws) {
+  auto engine = std::make_shared<ForceEngine>(engine_with_grid(model, std::numeric_limits<double>::quiet_NaN(), ws));
+  engine->blocks = ForceBlocks{{}, {}, model.num_nodes()};
+  ws.engine = engine;
+}
+
+// Gives the workspace the model's engine (at the default fill) with this grid layout.
+void use_grid(const Model& model, std::shared_ptr<const GridLayout> grid, ForceWorkspace& ws) {
+  auto engine = std::make_shared<ForceEngine>(engine_with_grid(model, kDefaultMinGridFill, ws));
+  engine->grid = std::move(grid);
+  ws.engine = engine;
+}
 using test::notes_material;
 
 // The middle cell of a body, and a state 1 mm and 0.1 m/s off rest at random; crushed: that
@@ -118,7 +134,7 @@ TEST(Forces, CorrectionSizeAndSignUnderUniaxialStress) {
     const Model model = test::box_model({1, 1, 1}, notes_material(nu));
     Model springs_only = model;
     for (auto& d : springs_only.cell_correction) d.setZero();
-    update_grid_layout(springs_only);
+    springs_only.mark_changed();
     const double eps = 1e-7;
     const Eigen::Vector3d strain(eps, -nu * eps, -nu * eps);
     const Eigen::Matrix3Xd x = model.rest_positions + strain.asDiagonal() * model.rest_positions;
@@ -167,9 +183,11 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
       Result<Model> built = build_model(desc);
       ASSERT_TRUE(built.ok()) << built.message();
       for (const bool lists : {false, true}) {  // the grid passes where the body has them, and the lists
-        Model model = built.value();
-        if (lists) model.grid_layout.reset();
-        ASSERT_GE(model.force_block_nodes.size(), 3u) << name << ": too few springs for 2 blocks";
+        const Model& model = built.value();
+        const auto options = [&](int threads) {
+          return lists ? on_spring_lists(ForceOptions{true, threads}) : ForceOptions{true, threads};
+        };
+        ASSERT_GE(split_force_blocks(model).count(), 2) << name << ": too few springs for 2 blocks";
         const State state = disturbed_state(model, crushed);
         if (crushed) {
           ASSERT_LT(cell_signed_volume(model, state.positions, middle_cell(model)), 0.0) << name;
@@ -178,8 +196,8 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
         loads.gravity = {0, 0, -9.81};
         ForceWorkspace ws;
         Eigen::Matrix3Xd one, two;
-        compute_forces(model, state, loads, ForceOptions{true, 1}, ws, one);
-        compute_forces(model, state, loads, ForceOptions{true, 2}, ws, two);
+        compute_forces(model, state, loads, options(1), ws, one);
+        compute_forces(model, state, loads, options(2), ws, two);
         EXPECT_EQ(std::memcmp(one.data(), two.data(), sizeof(double) * one.size()), 0)
             << name << (crushed ? ", crushed" : "") << (lists ? ", spring lists" : "");
       }
@@ -199,19 +217,18 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
     desc.law = law;
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
-    Model blocked = built.value();
-    blocked.grid_layout.reset();  // the spring lists, which the blocks cut
-    ASSERT_GE(blocked.force_block_nodes.size(), 3u) << "too few springs for 2 blocks";
-    Model whole = blocked;
-    whole.force_block_nodes.clear();  // one block of every node
-    whole.force_block_reach.clear();
+    const Model& blocked = built.value();  // on the spring lists, which the blocks cut
+    const Model& whole = blocked;          // in one block of every node
+    ASSERT_GE(split_force_blocks(blocked).count(), 2) << "too few springs for 2 blocks";
     const State state = disturbed_state(blocked, true);  // a crushed cell too
     Loads loads;
     loads.gravity = {0, 0, -9.81};
     ForceWorkspace blocked_ws, whole_ws;
+    use_one_block(whole, whole_ws);
     Eigen::Matrix3Xd by_blocks, at_once;
-    compute_forces(blocked, state, loads, ForceOptions{true, 2}, blocked_ws, by_blocks);
-    compute_forces(whole, state, loads, ForceOptions{true, 1}, whole_ws, at_once);
+    compute_forces(blocked, state, loads, on_spring_lists(ForceOptions{true, 2}), blocked_ws, by_blocks);
+    compute_forces(whole, state, loads, on_spring_lists(ForceOptions{true, 1}), whole_ws, at_once);
+    ASSERT_EQ(whole_ws.engine->blocks.count(), 1);
     const double scale = at_once.cwiseAbs().maxCoeff();
     EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale)
         << cell_model_name(cell_model) << ", " << cell_law_name(law);
@@ -270,10 +287,9 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     const Model& grid = built.value();
-    ASSERT_NE(grid.grid_layout, nullptr) << name;
+    ASSERT_TRUE(uses_grid_passes(grid)) << name;
     ASSERT_EQ(grid.major_axis, major_axis) << name;
-    Model lists = grid;
-    lists.grid_layout.reset();
+    const Model& lists = grid;  // with on_spring_lists
     for (const bool crushed : {false, true}) {
       State state = disturbed_state(grid, crushed);
       if (crushed) {
@@ -287,7 +303,7 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
         ForceWorkspace grid_ws, lists_ws;
         Eigen::Matrix3Xd by_grid, by_lists;
         compute_forces(grid, state, loads, ForceOptions{damping, 1}, grid_ws, by_grid);
-        compute_forces(lists, state, loads, ForceOptions{damping, 1}, lists_ws, by_lists);
+        compute_forces(lists, state, loads, on_spring_lists(ForceOptions{damping, 1}), lists_ws, by_lists);
         ASSERT_TRUE(by_grid.allFinite()) << name;
         const double scale = by_lists.cwiseAbs().maxCoeff();
         EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale)
@@ -317,8 +333,8 @@ TEST(Forces, ABoxNumberedAlongXHasTheForcesOfItsTurnedCopy) {
     const Model& model_z = built_z.value();
     ASSERT_EQ(model_x.major_axis, 0);
     ASSERT_EQ(model_z.major_axis, 2);
-    ASSERT_NE(model_x.grid_layout, nullptr);
-    ASSERT_NE(model_z.grid_layout, nullptr);
+    ASSERT_TRUE(uses_grid_passes(model_x));
+    ASSERT_TRUE(uses_grid_passes(model_z));
     const State state_x = disturbed_state(model_x, true);
     State state_z = rest_state(model_z);
     std::vector<int> turned_node(model_x.num_nodes());
@@ -367,17 +383,18 @@ TEST(Forces, OneMaterialsConstantsGiveThePerPointArraysBits) {
       ASSERT_TRUE(built.ok()) << built.message();
       const Model& constants = built.value();
       const std::string what = std::string(cell_model_name(cell_model)) + ", " + std::to_string(desc.cells.size()) + " cells";
-      ASSERT_NE(constants.grid_layout, nullptr) << what;
-      ASSERT_TRUE(constants.grid_layout->uniform_cells) << what;
-      for (const SpringFamily& family : constants.grid_layout->families) ASSERT_TRUE(family.uniform) << what;
-      auto arrays = std::make_shared<GridLayout>(*constants.grid_layout);
+      const std::shared_ptr<const GridLayout> grid = build_grid_layout(constants);
+      ASSERT_NE(grid, nullptr) << what;
+      ASSERT_TRUE(grid->uniform_cells) << what;
+      for (const SpringFamily& family : grid->families) ASSERT_TRUE(family.uniform) << what;
+      auto arrays = std::make_shared<GridLayout>(*grid);
       arrays->uniform_cells = false;
       for (SpringFamily& family : arrays->families) family.uniform = false;
-      Model per_point = constants;
-      per_point.grid_layout = arrays;
+      const Model& per_point = constants;  // on `arrays`
       for (const bool crushed : {false, true}) {
         const State state = disturbed_state(constants, crushed);
         ForceWorkspace ws_constants, ws_arrays;
+        use_grid(per_point, arrays, ws_arrays);
         Eigen::Matrix3Xd by_constants, by_arrays;
         compute_forces(constants, state, Loads{}, ForceOptions{true, 1}, ws_constants, by_constants);
         compute_forces(per_point, state, Loads{}, ForceOptions{true, 1}, ws_arrays, by_arrays);
@@ -393,13 +410,15 @@ TEST(Forces, OneMaterialsConstantsGiveThePerPointArraysBits) {
   for (const Eigen::Vector3i& cell : inclusion.cells) inclusion.cell_material.push_back(cell == Eigen::Vector3i(2, 2, 2) ? 1 : 0);
   Result<Model> built = build_model(inclusion);
   ASSERT_TRUE(built.ok()) << built.message();
-  ASSERT_NE(built.value().grid_layout, nullptr);
-  for (int f = 0; f < kSpringFamilies; ++f) EXPECT_EQ(built.value().grid_layout->families[f].uniform, false) << f;
+  const std::shared_ptr<const GridLayout> grid = build_grid_layout(built.value());
+  ASSERT_NE(grid, nullptr);
+  for (int f = 0; f < kSpringFamilies; ++f) EXPECT_EQ(grid->families[f].uniform, false) << f;
 }
 
 // ... but only while every cell has them: after one diagonal's or edge's stiffness, or its
-// damping, or one cell's correction, or its twist is changed (and update_grid_layout), the grid
-// passes still give the lists' forces, which the change moves by far more than the rounding.
+// damping, or one cell's correction, or its twist is changed (and Model::mark_changed), the grid
+// passes still give the lists' forces, which the change moves by far more than the rounding;
+// a workspace whose engine was built before the change rebuilds it.
 TEST(Forces, GridPassesTakeAChangedSpringOrCell) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
@@ -422,6 +441,10 @@ TEST(Forces, GridPassesTakeAChangedSpringOrCell) {
                                 Change::kEdgeDamping, Change::kCellCorrection, Change::kCellTwist}) {
       if (change == Change::kCellTwist && !before.has_twist) continue;
       Model changed = before;
+      const State state = disturbed_state(changed, false);
+      ForceWorkspace kept;  // its engine built for the model before the change
+      Eigen::Matrix3Xd by_kept;
+      compute_forces(changed, state, Loads{}, ForceOptions{true, 1}, kept, by_kept);
       const int cell = middle_cell(changed);
       switch (change) {
         case Change::kDiagonalStiffness: changed.spring_stiffness[diagonal] *= 3.0; break;
@@ -431,20 +454,20 @@ TEST(Forces, GridPassesTakeAChangedSpringOrCell) {
         case Change::kCellCorrection: changed.cell_correction[cell] *= 1.5; break;
         case Change::kCellTwist: changed.cell_twist_stiffness[cell] *= 1.5; break;
       }
-      update_grid_layout(changed);
-      ASSERT_NE(changed.grid_layout, nullptr);
-      Model lists = changed;
-      lists.grid_layout.reset();
-      const State state = disturbed_state(changed, false);
+      changed.mark_changed();
+      ASSERT_TRUE(uses_grid_passes(changed));
+      const Model& lists = changed;  // with on_spring_lists
+      compute_forces(changed, state, Loads{}, ForceOptions{true, 1}, kept, by_kept);
       ForceWorkspace ws;
       Eigen::Matrix3Xd by_grid, by_lists, unchanged;
       compute_forces(changed, state, Loads{}, ForceOptions{true, 1}, ws, by_grid);
-      compute_forces(lists, state, Loads{}, ForceOptions{true, 1}, ws, by_lists);
+      compute_forces(lists, state, Loads{}, on_spring_lists(ForceOptions{true, 1}), ws, by_lists);
       compute_forces(before, state, Loads{}, ForceOptions{true, 1}, ws, unchanged);
       const double scale = by_lists.cwiseAbs().maxCoeff();
       const std::string what = std::string(cell_model_name(cell_model)) + ", change " + std::to_string(static_cast<int>(change));
       ASSERT_GT((by_lists - unchanged).cwiseAbs().maxCoeff(), 1e-9 * scale) << what;
       EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale) << what;
+      EXPECT_TRUE(by_kept == by_grid) << what;
     }
   }
 }
@@ -473,10 +496,9 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
     Result<Model> built = build_model(desc);
     ASSERT_TRUE(built.ok()) << built.message();
     const Model& grid = built.value();
-    ASSERT_NE(grid.grid_layout, nullptr) << name;
+    ASSERT_TRUE(uses_grid_passes(grid)) << name;
     ASSERT_EQ(grid.major_axis, major_axis) << name;
-    Model lists = grid;
-    lists.grid_layout.reset();
+    const Model& lists = grid;  // with on_spring_lists
     const State state = disturbed_state(grid, true);
     Loads loads;
     loads.gravity = {0, 0, -9.81};
@@ -487,7 +509,7 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
       compute_forces(grid, state, loads, ForceOptions{true, threads}, ws, many);
       EXPECT_EQ(std::memcmp(one.data(), many.data(), sizeof(double) * one.size()), 0) << name << ", " << threads << " threads";
     }
-    compute_forces(lists, state, loads, ForceOptions{true, 2}, ws, by_lists);
+    compute_forces(lists, state, loads, on_spring_lists(ForceOptions{true, 2}), ws, by_lists);
     EXPECT_LT((one - by_lists).cwiseAbs().maxCoeff(), 1e-12 * by_lists.cwiseAbs().maxCoeff()) << name;
   }
 }
@@ -514,7 +536,7 @@ struct LayeredBody {
   Eigen::Matrix3Xd one_thread;
 };
 LayeredBody layered_body(const Model& model) {
-  EXPECT_NE(model.grid_layout, nullptr);
+  EXPECT_TRUE(uses_grid_passes(model));
   EXPECT_EQ(model.major_axis, 2);  // 25 z-layers of points
   LayeredBody body{disturbed_state(model, true), Loads{}, Eigen::Matrix3Xd{}};
   body.loads.gravity = {0, 0, -9.81};
@@ -597,8 +619,9 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
       Result<Model> built = build_model(desc);
       ASSERT_TRUE(built.ok()) << built.message();
       const Model& model = built.value();
-      ASSERT_NE(model.grid_layout, nullptr);
-      ASSERT_GE(grid_threads(*model.grid_layout, 3), 3);
+      const std::shared_ptr<const GridLayout> grid = build_grid_layout(model);
+      ASSERT_NE(grid, nullptr);
+      ASSERT_GE(grid_threads(*grid, 3), 3);
       const auto inside = std::find(model.cell_grid_index.begin(), model.cell_grid_index.end(), cells / 2);
       ASSERT_NE(inside, model.cell_grid_index.end());
       const int cell = static_cast<int>(inside - model.cell_grid_index.begin());
@@ -624,9 +647,9 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
           std::vector<double> scratch;
           GridSplit split;
           Eigen::Matrix3Xd forces;
-          EXPECT_EQ(grid_spring_forces(*model.grid_layout, state, true, 1, scratch, split, forces).crushed, expected)
+          EXPECT_EQ(grid_spring_forces(*grid, state, true, 1, scratch, split, forces).crushed, expected)
               << what;
-          const int layers = model.grid_layout->points.z();
+          const int layers = grid->points.z();
           const int layer = model.node_grid_index[model.cell_nodes[cell][0]][model.major_axis];
           std::vector<std::vector<int>> splits;
           for (int meet = layer - 1; meet <= layer + 2; ++meet) splits.push_back({0, meet, layers});
@@ -634,7 +657,7 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
           for (const std::vector<int>& first_layers : splits) {
             split = GridSplit{first_layers, {}, 0, true};
             const int threads = static_cast<int>(first_layers.size()) - 1;
-            EXPECT_EQ(grid_spring_forces(*model.grid_layout, state, true, threads, scratch, split, forces).crushed,
+            EXPECT_EQ(grid_spring_forces(*grid, state, true, threads, scratch, split, forces).crushed,
                       expected)
                 << what << ", split " << ::testing::PrintToString(first_layers);
             ASSERT_EQ(split.first_layers, first_layers) << what << ": the split was not used as it was";
@@ -718,8 +741,8 @@ TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
   // 2 x 4 x 2 points and 3 x 2 x 3: the same size of grid arrays and rings (grid_forces.cpp)
   const Model first = test::box_model({1, 3, 1}, notes_material(0.3));
   const Model second = test::box_model({2, 1, 2}, notes_material(0.45));
-  ASSERT_NE(first.grid_layout, nullptr);
-  ASSERT_NE(second.grid_layout, nullptr);
+  ASSERT_TRUE(uses_grid_passes(first));
+  ASSERT_TRUE(uses_grid_passes(second));
   State first_state = rest_state(first);
   first_state.positions = test::perturbed(first, 1e-3);
   State second_state = rest_state(second);
@@ -734,8 +757,8 @@ TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
 }
 
 // Which bodies the grid passes take: those that fill at least kDefaultMinGridFill (0.45) of their
-// box, or whatever fill update_grid_layout() is given; a sparse body forced onto the grid, its
-// box mostly empty points, still gets the forces of the spring lists.
+// box, or whatever ForceOptions::min_grid_fill says; a sparse body forced onto the grid, its box
+// mostly empty points, still gets the forces of the spring lists.
 TEST(Forces, GridPassesTakeBodiesThatFillEnoughOfTheirBox) {
   ASSERT_EQ(kDefaultMinGridFill, 0.45);  // the fills below are chosen about it
   LatticeDesc sparse;
@@ -744,37 +767,36 @@ TEST(Forces, GridPassesTakeBodiesThatFillEnoughOfTheirBox) {
   for (int i = 0; i < 5; ++i) sparse.cells.push_back({i, std::min(i, 3), 0});  // 5 of the 20 cells of a 5x4 box
   const Result<Model> built = build_model(sparse);
   ASSERT_TRUE(built.ok()) << built.message();
-  EXPECT_EQ(built.value().grid_layout, nullptr);
+  EXPECT_FALSE(uses_grid_passes(built.value()));
   LatticeDesc denser = sparse;
   denser.cells.push_back({1, 0, 0});
   denser.cells.push_back({2, 1, 0});
   denser.cells.push_back({3, 2, 0});  // 8 of 20: 0.40
-  EXPECT_EQ(build_model(denser).value().grid_layout, nullptr);
+  EXPECT_FALSE(uses_grid_passes(build_model(denser).value()));
   denser.cells.push_back({0, 1, 0});  // 9 of 20: 0.45
-  EXPECT_NE(build_model(denser).value().grid_layout, nullptr);
+  EXPECT_TRUE(uses_grid_passes(build_model(denser).value()));
   LatticeDesc exact = box_lattice({3, 2, 2}, Eigen::Vector3d::Constant(0.01), notes_material(0.3));
   exact.model = CellModel::kExactBending;
-  EXPECT_NE(build_model(exact).value().grid_layout, nullptr);
+  EXPECT_TRUE(uses_grid_passes(build_model(exact).value()));
 
-  Model on_grid = built.value();
-  update_grid_layout(on_grid, 0.0);
-  ASSERT_NE(on_grid.grid_layout, nullptr);
-  const State state = disturbed_state(on_grid, false);
+  const Model& sparse_model = built.value();
+  const ForceOptions anywhere{true, 1, 0.0};
+  ASSERT_TRUE(uses_grid_passes(sparse_model, anywhere));
+  const State state = disturbed_state(sparse_model, false);
   Loads loads;
   loads.gravity = {0, 0, -9.81};
   ForceWorkspace grid_ws, lists_ws;
   Eigen::Matrix3Xd by_grid, by_lists;
-  compute_forces(on_grid, state, loads, ForceOptions{true, 1}, grid_ws, by_grid);
-  compute_forces(built.value(), state, loads, ForceOptions{true, 1}, lists_ws, by_lists);
+  compute_forces(sparse_model, state, loads, anywhere, grid_ws, by_grid);
+  compute_forces(sparse_model, state, loads, ForceOptions{true, 1}, lists_ws, by_lists);
+  ASSERT_NE(grid_ws.engine->grid, nullptr);
+  ASSERT_EQ(lists_ws.engine->grid, nullptr);
   EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * by_lists.cwiseAbs().maxCoeff());
 
-  Model full = build_model(exact).value();
-  update_grid_layout(full, 1.01);
-  EXPECT_EQ(full.grid_layout, nullptr);
-  update_grid_layout(full, std::numeric_limits<double>::quiet_NaN());
-  EXPECT_EQ(full.grid_layout, nullptr);
-  update_grid_layout(full, 1.0);
-  EXPECT_NE(full.grid_layout, nullptr);
+  const Model full = build_model(exact).value();
+  EXPECT_FALSE(uses_grid_passes(full, ForceOptions{true, 1, 1.01}));
+  EXPECT_FALSE(uses_grid_passes(full, ForceOptions{true, 1, std::numeric_limits<double>::quiet_NaN()}));
+  EXPECT_TRUE(uses_grid_passes(full, ForceOptions{true, 1, 1.0}));
 }
 
 TEST(Forces, GravityPullsEveryMass) {

@@ -23,6 +23,14 @@
 namespace cubespring {
 namespace {
 
+// The two force engines a body may step on: the grid passes (a box fills its own box) and the
+// spring lists (a grid fill no body reaches), as StepSettings::min_grid_fill chooses.
+struct ForceLayout {
+  const char* name;
+  double min_grid_fill;
+};
+const ForceLayout kLayouts[] = {{"grid", kDefaultMinGridFill}, {"lists", std::numeric_limits<double>::quiet_NaN()}};
+
 // Two masses joined by one spring along x, built by hand.
 Model single_spring(double m0, double m1, double k) {
   Model model;
@@ -146,10 +154,9 @@ TEST(Integrator, StableTimeStepSeparatesStableFromUnstable) {
 // (only the positions the kick makes are then not finite).
 TEST(Integrator, ANonFiniteStepIsReportedAndLeavesTheState) {
   const Model grid = test::box_model({6, 4, 3}, test::notes_material(0.3));
-  ASSERT_NE(grid.grid_layout, nullptr);
-  Model lists = grid;
-  lists.grid_layout.reset();
-  for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
+  ASSERT_TRUE(uses_grid_passes(grid));
+  const Model* model = &grid;
+  for (const auto& [layout, fill] : kLayouts) {
     for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet}) {
       for (const bool overflow : {false, true}) {
         State state = wobbling_block(*model);
@@ -164,11 +171,12 @@ TEST(Integrator, ANonFiniteStepIsReportedAndLeavesTheState) {
         } else {
           state.positions(1, 17) = std::numeric_limits<double>::quiet_NaN();
         }
+        settings.min_grid_fill = fill;
         const State before = state;
         Stepper stepper(*model);
         const StepReport report = stepper.step(*model, Constraints(*model), Loads{}, settings, state);
-        const std::string what = std::string(model->grid_layout ? "grid, " : "lists, ") +
-                                 integrator_name(integrator) + (overflow ? ", overflow" : ", NaN");
+        const std::string what = std::string(layout) + ", " + integrator_name(integrator) +
+                                 (overflow ? ", overflow" : ", NaN");
         EXPECT_EQ(report.status, StepStatus::kUnstable) << what;
         EXPECT_NE(report.message.find("NaN or infinite"), std::string::npos) << what << ": " << report.message;
         const auto bytes = sizeof(double) * static_cast<std::size_t>(state.positions.size());
@@ -184,18 +192,16 @@ TEST(Integrator, ANonFiniteStepIsReportedAndLeavesTheState) {
 // the step as unstable and leaves the state as it was.
 TEST(Integrator, ADrivenNodeWithAnInfiniteSpeedIsReported) {
   const Model grid = test::box_model({6, 4, 3}, test::notes_material(0.3));
-  ASSERT_NE(grid.grid_layout, nullptr);
-  Model lists = grid;
-  lists.grid_layout.reset();
-  for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
+  ASSERT_TRUE(uses_grid_passes(grid));
+  const Model* model = &grid;
+  for (const auto& [layout, fill] : kLayouts) {
     Constraints tool(*model);
     ASSERT_TRUE(tool.prescribe_displacement(*model, 5, {1e10, 0, 0}).ok());
     // with a crushed cell too: the grid's kick is then redone at its corners and its speed found again
     for (const bool crushed : {false, true}) {
       for (Integrator integrator :
            {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet, Integrator::kImplicitEuler}) {
-        const std::string what = std::string(model->grid_layout ? "grid, " : "lists, ") + integrator_name(integrator) +
-                                 (crushed ? ", crushed" : "");
+        const std::string what = std::string(layout) + ", " + integrator_name(integrator) + (crushed ? ", crushed" : "");
         State state = rest_state(*model);
         if (crushed) {  // the last cell's top face pushed through its bottom
           for (int corner = 4; corner < 8; ++corner) state.positions(2, model->cell_nodes.back()[corner]) -= 0.015;
@@ -203,6 +209,7 @@ TEST(Integrator, ADrivenNodeWithAnInfiniteSpeedIsReported) {
         const State before = state;
         StepSettings settings;
         settings.integrator = integrator;
+        settings.min_grid_fill = fill;
         settings.time_step = 1e-300;
         Stepper stepper(*model);
         const StepReport report = stepper.step(*model, tool, Loads{}, settings, state);
@@ -287,7 +294,7 @@ TEST(Integrator, ImplicitStepFollowsAChangedCorrection) {
   State unchanged = start;
   ASSERT_TRUE(Stepper(model).step(model, clamp, loads, settings, unchanged).ok());
   for (int c = 0; c < model.num_cells(); c += 2) model.cell_correction[c] *= 3.0;
-  update_grid_layout(model);
+  model.mark_changed();
   State by_kept = start, by_new = start;
   ASSERT_TRUE(kept.step(model, clamp, loads, settings, by_kept).ok());
   ASSERT_TRUE(Stepper(model).step(model, clamp, loads, settings, by_new).ok());
@@ -339,9 +346,8 @@ TEST(Integrator, GridAndSpringListsStepAlike) {
   m.stiffness_damping = 1e-4;
   m.mass_damping = 5.0;
   const Model grid = test::box_model({6, 4, 3}, m);
-  ASSERT_NE(grid.grid_layout, nullptr);
-  Model lists = grid;
-  lists.grid_layout.reset();
+  ASSERT_TRUE(uses_grid_passes(grid));
+  const Model& lists = grid;  // stepped on the spring lists
   Constraints clamp(grid);
   ASSERT_TRUE(clamp.fix_box(grid, {-1, -1, -1}, {1e-9, 1, 1}).ok());
   Loads loads;
@@ -357,11 +363,13 @@ TEST(Integrator, GridAndSpringListsStepAlike) {
       StepSettings settings;
       settings.integrator = integrator;
       settings.time_step = 0.5 * max_stable_time_step(grid);
+      StepSettings lists_settings = settings;
+      lists_settings.min_grid_fill = std::numeric_limits<double>::quiet_NaN();
       State on_grid = start, on_lists = start;
       Stepper grid_stepper(grid), lists_stepper(lists);
       for (int i = 0; i < 20; ++i) {
         ASSERT_TRUE(grid_stepper.step(grid, clamp, loads, settings, on_grid).ok());
-        ASSERT_TRUE(lists_stepper.step(lists, clamp, loads, settings, on_lists).ok());
+        ASSERT_TRUE(lists_stepper.step(lists, clamp, loads, lists_settings, on_lists).ok());
       }
       const double moved = (on_lists.positions - start.positions).cwiseAbs().maxCoeff();
       ASSERT_GT(moved, 1e-6);
@@ -381,8 +389,9 @@ TEST(Integrator, GridAndSpringListsStepAlike) {
 // grid_kick.cpp) and must give the same bits.
 void expect_step_is_forces_then_kicks(Integrator integrator, const Model& model, const Constraints& clamp,
                                       const Loads& loads, const State& start, double dt, int threads,
-                                      const std::string& what) {
+                                      const std::string& what, double min_grid_fill = kDefaultMinGridFill) {
   StepSettings settings;
+  settings.min_grid_fill = min_grid_fill;
   settings.integrator = integrator;
   settings.threads = threads;
   settings.time_step = dt;
@@ -394,7 +403,8 @@ void expect_step_is_forces_then_kicks(Integrator integrator, const Model& model,
   const double kick = verlet ? 0.5 * dt : dt;
   ForceWorkspace workspace;
   Eigen::Matrix3Xd forces;
-  compute_forces(model, start, loads, ForceOptions{}, workspace, forces);
+  const ForceOptions options{true, 1, min_grid_fill};
+  compute_forces(model, start, loads, options, workspace, forces);
   State expected = start;
   const auto kick_and_drive = [&](const State& from, double drift) {
     for (int n = 0; n < model.num_nodes(); ++n) {
@@ -410,7 +420,7 @@ void expect_step_is_forces_then_kicks(Integrator integrator, const Model& model,
   kick_and_drive(start, dt);
   if (verlet) {
     const State half_step = expected;
-    compute_forces(model, half_step, loads, ForceOptions{}, workspace, forces);
+    compute_forces(model, half_step, loads, options, workspace, forces);
     kick_and_drive(half_step, 0.0);
   }
   EXPECT_TRUE(stepper.last_forces() == forces) << what;
@@ -434,10 +444,9 @@ void expect_every_step_is_forces_then_kicks(Integrator integrator) {
     m.stiffness_damping = 1e-4;
     m.mass_damping = mass_damping;
     const Model grid = test::box_model({6, 4, 3}, m);
-    ASSERT_NE(grid.grid_layout, nullptr);
-    Model lists = grid;
-    lists.grid_layout.reset();
-    for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
+    ASSERT_TRUE(uses_grid_passes(grid));
+    const Model* model = &grid;
+    for (const auto& [layout, fill] : kLayouts) {
       Constraints clamp(*model);
       ASSERT_TRUE(clamp.fix_box(*model, {-1, -1, -1}, {1e-9, 1, 1}).ok());
       for (const bool with_loads : {false, true}) {
@@ -450,9 +459,9 @@ void expect_every_step_is_forces_then_kicks(Integrator integrator) {
           State start = wobbling_block(*model);
           if (crushed) crush_cell(*model, model->num_cells() - 1, start);
           expect_step_is_forces_then_kick(*model, clamp, loads, start, 0.5 * max_stable_time_step(*model), 1,
-                                          std::string(model->grid_layout ? "grid" : "lists") + ", alpha " +
-                                              std::to_string(mass_damping) + (with_loads ? ", loads" : "") +
-                                              (crushed ? ", crushed" : ""));
+                                          std::string(layout) + ", alpha " + std::to_string(mass_damping) +
+                                              (with_loads ? ", loads" : "") + (crushed ? ", crushed" : ""),
+                                          fill);
         }
       }
     }
@@ -468,7 +477,7 @@ void expect_every_step_is_forces_then_kicks(Integrator integrator) {
   holes.cells = kept;
   Result<Model> holed = build_model(holes);
   ASSERT_TRUE(holed.ok()) << holed.message();
-  ASSERT_NE(holed.value().grid_layout, nullptr);
+  ASSERT_TRUE(uses_grid_passes(holed.value()));
   ASSERT_LT(holed.value().num_nodes(), 7 * 6 * 5);
   expect_step_is_forces_then_kick(holed.value(), Constraints(holed.value()), Loads{}, wobbling_block(holed.value()),
                                   0.5 * max_stable_time_step(holed.value()), 1, "holes");
@@ -479,7 +488,7 @@ void expect_every_step_is_forces_then_kicks(Integrator integrator) {
   Material damped = test::notes_material(0.3);
   damped.mass_damping = 5.0;
   const Model large = test::box_model({24, 24, 20}, damped);
-  ASSERT_NE(large.grid_layout, nullptr);
+  ASSERT_TRUE(uses_grid_passes(large));
   Loads loads;
   loads.gravity = {0, 0, -9.81};
   loads.nodal_forces = 1e-3 * Eigen::Matrix3Xd::Random(3, large.num_nodes());
@@ -512,18 +521,17 @@ TEST(Integrator, VelocityVerletStepIsTwoHalfKicksAroundTheForces) {
 // ran before the recovery was known) as on the lists.
 TEST(Integrator, TheSpeedCheckSeesTheCrushedCellsRecovery) {
   const Model grid = test::box_model({6, 4, 3}, test::notes_material(0.3));
-  ASSERT_NE(grid.grid_layout, nullptr);
-  Model lists = grid;
-  lists.grid_layout.reset();
+  ASSERT_TRUE(uses_grid_passes(grid));
   const int crushed = grid.num_cells() - 1;
-  for (const Model* model : {&grid, static_cast<const Model*>(&lists)}) {
-    const std::string what = model->grid_layout ? "grid" : "lists";
+  const Model* model = &grid;
+  for (const auto& [layout, fill] : kLayouts) {
+    const std::string what = layout;
     State start = wobbling_block(*model);
     crush_cell(*model, crushed, start);
     const double dt = 0.5 * max_stable_time_step(*model);
     ForceWorkspace workspace;
     Eigen::Matrix3Xd forces;
-    compute_forces(*model, start, Loads{}, ForceOptions{}, workspace, forces);
+    compute_forces(*model, start, Loads{}, ForceOptions{true, 1, fill}, workspace, forces);
     Eigen::Index fastest = 0;
     const Eigen::VectorXd speed_sq =
         (start.velocities + dt * forces * model->mass.cwiseInverse().asDiagonal()).colwise().squaredNorm().transpose();
@@ -533,6 +541,7 @@ TEST(Integrator, TheSpeedCheckSeesTheCrushedCellsRecovery) {
     for (const double margin : {1.0 - 1e-9, 1.0 + 1e-9}) {
       StepSettings settings;
       settings.time_step = dt;
+      settings.min_grid_fill = fill;
       settings.speed_limit = margin * fastest_speed;
       State state = start;
       Stepper stepper(*model);

@@ -3,6 +3,7 @@
 // Shared fixtures of the unit tests.
 #pragma once
 
+#include <limits>
 #include <random>
 
 #include <Eigen/Dense>
@@ -50,6 +51,12 @@ inline Eigen::Matrix3Xd elastic_forces(const Model& model, const Eigen::Matrix3X
   Eigen::Matrix3Xd forces;
   compute_forces(model, state, Loads{}, ForceOptions{false, 1}, ws, forces);
   return forces;
+}
+
+/// The options with a grid fill no body reaches: the force passes take the spring lists.
+inline ForceOptions on_spring_lists(ForceOptions options) {
+  options.min_grid_fill = std::numeric_limits<double>::quiet_NaN();
+  return options;
 }
 
 /// The assembled stiffness at positions x as a dense matrix (small bodies only).

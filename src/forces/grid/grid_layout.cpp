@@ -221,6 +221,4 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
   return layout;
 }
 
-void update_grid_layout(Model& model, double min_fill) { model.grid_layout = build_grid_layout(model, min_fill); }
-
 }  // namespace cubespring
