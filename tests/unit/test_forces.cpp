@@ -563,7 +563,11 @@ TEST(Forces, PairsOfThreadsMeetAnywhereAndKeepTheBits) {
                                                           {"exact-bending", exact_model.value()}};
   ASSERT_TRUE(runtime_gives(2) && runtime_gives(3) && runtime_gives(4)) << "the splits would go untested";
   for (const auto& [name, model] : bodies) {
-    const auto [state, loads, one] = layered_body(model);
+    // named references, not a structured binding: an OpenMP region may capture them (C++17)
+    const LayeredBody body = layered_body(model);
+    const State& state = body.state;
+    const Loads& loads = body.loads;
+    const Eigen::Matrix3Xd& one = body.one_thread;
     ForceWorkspace ws;
     Eigen::Matrix3Xd many;
     compute_forces(model, state, loads, ForceOptions{true, 1}, ws, many);  // a split set from now on stays
@@ -677,7 +681,11 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
 TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
   ASSERT_TRUE(runtime_gives(2) && runtime_gives(3) && runtime_gives(4)) << "the splits would go untested";
   const Model model = test::box_model({14, 24, 24}, notes_material(0.3));
-  const auto [state, loads, one] = layered_body(model);
+  // named references, not a structured binding: an OpenMP region may capture them (C++17)
+  const LayeredBody body = layered_body(model);
+  const State& state = body.state;
+  const Loads& loads = body.loads;
+  const Eigen::Matrix3Xd& one = body.one_thread;
   ForceWorkspace ws;
   Eigen::Matrix3Xd two;
   compute_forces(model, state, loads, ForceOptions{true, 1}, ws, two);  // a split set from now on stays

@@ -45,7 +45,7 @@ enum LayerSlot : int {
   kCellNeoHookean = kFaceTwist + 3,
   kSlots = kCellNeoHookean + 9
 };
-constexpr int kLayerSlots = kSlots - kGridSlots;
+constexpr int kLayerSlots = static_cast<int>(kSlots) - static_cast<int>(kGridSlots);
 // The passes of layer L read the temporaries of layers L - 1 to L + 1 (run_chunk).
 constexpr int kRingLayers = 3;
 constexpr int kRingPlaces = kRingLayers + 1;
