@@ -32,7 +32,6 @@
 
 // Bullet's headers come through the imported target's include directory, which CMake passes as a
 // system directory (-isystem): the project's warnings do not fire inside them.
-#include <btBulletDynamicsCommon.h>
 #include <BulletSoftBody/btDeformableBodySolver.h>
 #include <BulletSoftBody/btDeformableGravityForce.h>
 #include <BulletSoftBody/btDeformableLinearElasticityForce.h>
@@ -42,16 +41,17 @@
 #include <BulletSoftBody/btSoftBodyHelpers.h>
 #include <BulletSoftBody/btSoftBodyRigidBodyCollisionConfiguration.h>
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
+#include <btBulletDynamicsCommon.h>
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include "arguments.h"
 #include "bench_support.h"
 #include "commands.h"
-#include "json_output.h"
 #include "cubespring/constraints.h"
 #include "cubespring/experiments.h"
 #include "cubespring/integrator.h"
+#include "json_output.h"
 
 namespace cubespring::app {
 namespace {
@@ -64,25 +64,23 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Finite-element references (README, "Against finite elements (CalculiX)"): linear C3D20R tip
 // deflections of the 0.16 x 0.04 x 0.04 m beam at E = 1 MPa, nu = 0.3, rho = 1000 kg/m^3.
-constexpr double kFeTip16x4x4AtHalfCell = -6.2759e-3;  // [m] 32x8x8 elements (h/2 of the 16x4x4 lattice)
+constexpr double kFeTip16x4x4AtHalfCell = -6.2759e-3;     // [m] 32x8x8 elements (h/2 of the 16x4x4 lattice)
 constexpr double kFeTip16x4x4AtQuarterCell = -6.2820e-3;  // [m] 64x16x16 elements (h/4), converged to 0.1%
 
 struct BenchBulletOptions {
   std::string sizes = "16,4,4;32,8,8";
-  double seconds = 3.0;     // simulated per case [s]
-  double dt = 1e-3;         // frame [s]
-  double damping = 10.0;    // mass-proportional (Rayleigh alpha) damping for every engine [1/s]
+  double seconds = 3.0;                   // simulated per case [s]
+  double dt = 1e-3;                       // frame [s]
+  double damping = 10.0;                  // mass-proportional (Rayleigh alpha) damping for every engine [1/s]
   std::vector<int> iterations{1, 8, 32};  // btSoftBody position iterations
   std::vector<std::string> models{"baudet2007", "exact-bending"};
-  std::vector<int> threads{1, 2};   // force-pass threads of the explicit cubespring rows
-  double drift_window = 0.5;        // the tip's change over the last this many seconds shows settling [s]
-  double max_case_seconds = 60.0;   // wall-time cap per case [s]
+  std::vector<int> threads{1, 2};  // force-pass threads of the explicit cubespring rows
+  double drift_window = 0.5;       // the tip's change over the last this many seconds shows settling [s]
+  double max_case_seconds = 60.0;  // wall-time cap per case [s]
   bool json = false;
 };
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 btScalar bt(double value) { return static_cast<btScalar>(value); }
 btVector3 bt(const Eigen::Vector3d& v) { return btVector3(bt(v.x()), bt(v.y()), bt(v.z())); }
@@ -92,7 +90,6 @@ std::string size_name(const Eigen::Vector3i& n) {
   name << n.x() << "x" << n.y() << "x" << n.z();
   return name.str();
 }
-
 
 // The FE tip deflection [m] for a beam of 4k x k x k cells of 1 cm (NaN for other shapes) and how
 // it was obtained. Linear elasticity under self-weight: a beam scaled by s sags s^2 as much.
@@ -175,7 +172,7 @@ void run_frames(const BenchBulletOptions& o, double length, const std::function<
 struct Beam {
   Eigen::Vector3i counts;
   Material material;
-  Model model;  // the paper's model: its nodes, masses and springs are shared by every engine
+  Model model;             // the paper's model: its nodes, masses and springs are shared by every engine
   std::vector<int> fixed;  // nodes of face x = 0
   std::vector<int> tip;    // nodes of face x = L
   double length = 0;
@@ -256,8 +253,8 @@ Row run_cubespring(const Beam& beam, CellModel cell_model, bool implicit, int th
   };
   run_frames(o, beam.length, step_frame, tip, row);
   if (implicit) {
-    setting << "implicit Euler 1 step/frame, CG 1e-6 (" << std::lround(static_cast<double>(solver_iterations) /
-                                                                       static_cast<double>(std::max(1L, steps)))
+    setting << "implicit Euler 1 step/frame, CG 1e-6 ("
+            << std::lround(static_cast<double>(solver_iterations) / static_cast<double>(std::max(1L, steps)))
             << " it/step)";
   }
   row.setting = setting.str();
@@ -334,7 +331,8 @@ Row run_soft_body(const Beam& beam, int iterations, const BenchBulletOptions& o)
     world.stepSimulation(bt(o.dt), 0);
     return "";
   };
-  run_frames(o, beam.length, step_frame, [&] { return bullet_tip(*body, beam); }, row);
+  run_frames(
+      o, beam.length, step_frame, [&] { return bullet_tip(*body, beam); }, row);
   world.removeSoftBody(body.get());
   return row;
 }
@@ -415,7 +413,8 @@ Row run_deformable(const Beam& beam, const BenchBulletOptions& o) {
     world.stepSimulation(bt(o.dt), 0);
     return "";
   };
-  run_frames(o, beam.length, step_frame, [&] { return bullet_tip(*body, beam); }, row);
+  run_frames(
+      o, beam.length, step_frame, [&] { return bullet_tip(*body, beam); }, row);
   world.removeForce(body.get(), &elasticity);
   world.removeForce(body.get(), &gravity_force);
   world.removeSoftBody(body.get());
@@ -424,10 +423,10 @@ Row run_deformable(const Beam& beam, const BenchBulletOptions& o) {
 
 // ---- the command -----------------------------------------------------------------------------
 
-
 void check_options(const BenchBulletOptions& o) {
   const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  if (!positive(o.seconds)) throw std::runtime_error("--seconds " + std::to_string(o.seconds) + " must be a number > 0");
+  if (!positive(o.seconds))
+    throw std::runtime_error("--seconds " + std::to_string(o.seconds) + " must be a number > 0");
   if (!positive(o.dt) || o.dt > o.seconds) {
     throw std::runtime_error("--dt " + std::to_string(o.dt) + " must be a number > 0 and <= --seconds");
   }
@@ -465,11 +464,12 @@ void print_table(const std::vector<Row>& rows, const std::vector<SizeSummary>& s
   const Material material = beam_material(o.damping);
   const std::string processor = cpu_name();
   std::printf("machine: %s, %u hardware threads; Bullet %d (%s precision)\n",
-              processor.empty() ? "unknown CPU" : processor.c_str(),
-              std::thread::hardware_concurrency(), btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single");
-  std::printf("beam of 1 cm cells, E = 1 MPa, nu = 0.3, rho = 1000 kg/m^3, face x = 0 clamped, g = 9.81 m/s^2 along -z;\n"
-              "%g s simulated in frames of %g ms from rest, mass damping alpha = %g 1/s in every engine\n",
-              o.seconds, 1e3 * o.dt, o.damping);
+              processor.empty() ? "unknown CPU" : processor.c_str(), std::thread::hardware_concurrency(),
+              btGetVersion(), sizeof(btScalar) == 8 ? "double" : "single");
+  std::printf(
+      "beam of 1 cm cells, E = 1 MPa, nu = 0.3, rho = 1000 kg/m^3, face x = 0 clamped, g = 9.81 m/s^2 along -z;\n"
+      "%g s simulated in frames of %g ms from rest, mass damping alpha = %g 1/s in every engine\n",
+      o.seconds, 1e3 * o.dt, o.damping);
   std::printf("%-7s %-21s %13s %12s %13s %9s %9s %8s  %s\n", "size", "engine", "wall_s/sim_s", "cpu_s/sim_s", "tip_m",
               "err_FE_%", "drift_%", "x_expl", "case / notes");
   for (const Row& r : rows) {
@@ -487,26 +487,26 @@ void print_table(const std::vector<Row>& rows, const std::vector<SizeSummary>& s
                 cpu.c_str(), tip.c_str(), error.c_str(), drift.c_str(), ratio.c_str(), r.setting.c_str(),
                 r.status == "ok" ? "" : ("; " + r.status).c_str());
   }
-  std::printf("wall_s/sim_s: wall seconds per simulated second, stepping only (set-up excluded), measured over the whole\n"
-              "run, or, for a case capped at %g s of wall time (*), over the part simulated (an extrapolation to the\n"
-              "full run; its tip is where it had got to, not where it settles). cpu_s/sim_s: the same in process\n"
-              "CPU time, which other jobs on a shared machine do not inflate. tip_m: mean z displacement of the\n"
-              "nodes of face x = L at the end. err_FE_%%: tip / FE reference - 1 (negative: too stiff). drift_%%: the\n"
-              "tip's change over the last %g s relative to the tip (how settled it is). x_expl: wall time over the\n"
-              "same size's cubespring explicit %s row. Every engine has the lattice's nodes and lumped masses\n"
-              "(rho h^3 / 8 per cell corner), so the loads are the same, and the clamped nodes fixed (cubespring:\n"
-              "Constraints::fix_nodes; Bullet: mass 0). Damping: cubespring Material::mass_damping = alpha;\n"
-              "btSoftBody kDP = alpha dt (velocities scaled by 1 - kDP each step); FEM damping_alpha = alpha,\n"
-              "damping_beta = 0; no stiffness damping anywhere. cubespring: double precision, 1 thread unless its case\n"
-              "says more (Bullet runs on one); explicit\n"
-              "sub-steps: the fewest of equal length within max_stable_time_step. Bullet: stepSimulation(dt, 0),\n"
-              "one internal step per frame; btSoftBody links = the lattice's springs (edges and body diagonals);\n"
-              "FEM: btDeformableBodySolver as in Bullet's volumetric demos (setImplicit(true), no line search,\n"
-              "setUseProjection(true), its default CG), btDeformableLinearElasticityForce(mu = %.0f Pa,\n"
-              "lambda = %.0f Pa), btDeformableGravityForce, each cell split along its 0-7 diagonal into 6 tets.\n"
-              "The FE references are linear; every run here is at full gravity (geometrically nonlinear).\n",
-              o.max_case_seconds, o.drift_window, o.models.front().c_str(), shear_modulus(material),
-              lame_lambda(material));
+  std::printf(
+      "wall_s/sim_s: wall seconds per simulated second, stepping only (set-up excluded), measured over the whole\n"
+      "run, or, for a case capped at %g s of wall time (*), over the part simulated (an extrapolation to the\n"
+      "full run; its tip is where it had got to, not where it settles). cpu_s/sim_s: the same in process\n"
+      "CPU time, which other jobs on a shared machine do not inflate. tip_m: mean z displacement of the\n"
+      "nodes of face x = L at the end. err_FE_%%: tip / FE reference - 1 (negative: too stiff). drift_%%: the\n"
+      "tip's change over the last %g s relative to the tip (how settled it is). x_expl: wall time over the\n"
+      "same size's cubespring explicit %s row. Every engine has the lattice's nodes and lumped masses\n"
+      "(rho h^3 / 8 per cell corner), so the loads are the same, and the clamped nodes fixed (cubespring:\n"
+      "Constraints::fix_nodes; Bullet: mass 0). Damping: cubespring Material::mass_damping = alpha;\n"
+      "btSoftBody kDP = alpha dt (velocities scaled by 1 - kDP each step); FEM damping_alpha = alpha,\n"
+      "damping_beta = 0; no stiffness damping anywhere. cubespring: double precision, 1 thread unless its case\n"
+      "says more (Bullet runs on one); explicit\n"
+      "sub-steps: the fewest of equal length within max_stable_time_step. Bullet: stepSimulation(dt, 0),\n"
+      "one internal step per frame; btSoftBody links = the lattice's springs (edges and body diagonals);\n"
+      "FEM: btDeformableBodySolver as in Bullet's volumetric demos (setImplicit(true), no line search,\n"
+      "setUseProjection(true), its default CG), btDeformableLinearElasticityForce(mu = %.0f Pa,\n"
+      "lambda = %.0f Pa), btDeformableGravityForce, each cell split along its 0-7 diagonal into 6 tets.\n"
+      "The FE references are linear; every run here is at full gravity (geometrically nonlinear).\n",
+      o.max_case_seconds, o.drift_window, o.models.front().c_str(), shear_modulus(material), lame_lambda(material));
   for (const SizeSummary& s : sizes) {
     std::printf("%s: FE reference %s m (%s); cubespring static (Newton):", s.size.c_str(),
                 format_number("%.6f", s.reference).c_str(), s.reference_source.c_str());
@@ -521,10 +521,10 @@ void print_table(const std::vector<Row>& rows, const std::vector<SizeSummary>& s
     if (!r.settled() || !std::isfinite(r.static_tip)) continue;
     const double off = r.tip / r.static_tip - 1.0;
     if (std::abs(off) < 0.01) continue;
-    std::printf("note: %s %s (%s) settles %+.1f%% away from the static equilibrium Newton finds from rest (%.6f m):\n"
-                "  the dynamics reached another equilibrium of the same lattice\n",
-                r.size.c_str(), r.engine.c_str(), r.setting.substr(0, r.setting.find(',')).c_str(), 100.0 * off,
-                r.static_tip);
+    std::printf(
+        "note: %s %s (%s) settles %+.1f%% away from the static equilibrium Newton finds from rest (%.6f m):\n"
+        "  the dynamics reached another equilibrium of the same lattice\n",
+        r.size.c_str(), r.engine.c_str(), r.setting.substr(0, r.setting.find(',')).c_str(), 100.0 * off, r.static_tip);
   }
   // the target: cubespring at least 50x faster than Bullet's deformable FEM, at better accuracy
   for (const SizeSummary& s : sizes) {
@@ -536,7 +536,8 @@ void print_table(const std::vector<Row>& rows, const std::vector<SizeSummary>& s
     for (const Row& r : rows) {
       if (r.size != s.size || r.engine.rfind("cubespring", 0) != 0 || r.diverged) continue;
       const double speedup = fem->wall_per_sim / r.wall_per_sim;
-      const std::string threads = r.threads > 1 ? ", " + std::to_string(r.threads) + " threads against the FEM's one" : "";
+      const std::string threads =
+          r.threads > 1 ? ", " + std::to_string(r.threads) + " threads against the FEM's one" : "";
       std::printf("target %s, %s (%s%s): %.3gx faster than the FEM in wall time (%.3gx in CPU time)%s", s.size.c_str(),
                   r.engine.c_str(), r.setting.substr(0, r.setting.find(',')).c_str(), threads.c_str(), speedup,
                   fem->cpu_per_sim / r.cpu_per_sim, fem->capped || r.capped ? " (time extrapolated)" : "");
@@ -632,9 +633,9 @@ int run_bench_bullet(const BenchBulletOptions& o) {
 
 Command add_bench_bullet_command(CLI::App& app) {
   auto options = std::make_shared<BenchBulletOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "bench-bullet",
-      "Run one clamped beam as a cubespring body, a classic Bullet btSoftBody and Bullet's deformable FEM, side by side");
+  CLI::App* cmd = app.add_subcommand("bench-bullet",
+                                     "Run one clamped beam as a cubespring body, a classic Bullet btSoftBody and "
+                                     "Bullet's deformable FEM, side by side");
   cmd->add_option("--sizes", options->sizes, "beams of 1 cm cells as NX,NY,NZ separated by ';'")->capture_default_str();
   cmd->add_option("--seconds", options->seconds, "simulated time per case [s]")->capture_default_str();
   cmd->add_option("--dt", options->dt, "frame time step [s]")->capture_default_str();

@@ -17,13 +17,13 @@
 #include "arguments.h"
 #include "bench_support.h"
 #include "commands.h"
+#include "cubespring/constraints.h"
+#include "cubespring/integrator.h"
+#include "cubespring/stable_time_step.h"
 #include "grid_spring_floor.h"
 #include "json_output.h"
 #include "number_checks.h"
 #include "step_timing.h"
-#include "cubespring/constraints.h"
-#include "cubespring/integrator.h"
-#include "cubespring/stable_time_step.h"
 
 namespace cubespring::app {
 namespace {
@@ -31,9 +31,9 @@ namespace {
 struct BenchOptions {
   std::string sizes = "16,4,4;32,8,8;64,16,16;32,32,32;64,64,64";
   int sphere_cells_across = 32;
-  double min_seconds = 0.3;       // per measurement
+  double min_seconds = 0.3;  // per measurement
   bool implicit = true;
-  int implicit_max_cells = 40000; // implicit steps are timed up to this many cells
+  int implicit_max_cells = 40000;  // implicit steps are timed up to this many cells
   bool json = false;
 };
 
@@ -61,7 +61,7 @@ struct Row {
   int cells = 0, nodes = 0, springs = 0;
   double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, verlet2 = 0;
   double implicit_step = 0, implicit_step2 = 0;  // 1 and 2 threads
-  double two_bodies = 0;  // two copies of the body's 1-thread symplectic step at once, on 2 threads
+  double two_bodies = 0;      // two copies of the body's 1-thread symplectic step at once, on 2 threads
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
   // the same with the neo-Hookean law, on the passes build_model chose and on the spring lists
   double neo_hookean1 = 0, neo_hookean_lists1 = 0;
@@ -131,9 +131,14 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   ExplicitStepper second_body(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   const TwoAtOnce two_bodies(std::ref(first_body), std::ref(second_body));
   std::vector<std::function<void()>> columns{[&] { bare_spring_pass(model, start.positions, forces); },
-                                             std::ref(symplectic1), std::ref(symplectic2), std::ref(verlet1),
-                                             std::ref(exact1), std::ref(two_bodies), std::ref(verlet2),
-                                             std::ref(neo_hookean1), std::ref(neo_hookean_lists1)};
+                                             std::ref(symplectic1),
+                                             std::ref(symplectic2),
+                                             std::ref(verlet1),
+                                             std::ref(exact1),
+                                             std::ref(two_bodies),
+                                             std::ref(verlet2),
+                                             std::ref(neo_hookean1),
+                                             std::ref(neo_hookean_lists1)};
   std::unique_ptr<GridSpringFloor> floor;
   if (box != nullptr) {
     const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
@@ -172,11 +177,13 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
     StepSettings settings2 = settings;
     settings2.threads = 2;
     long iterations = 0, steps = 0;
-    const std::vector<double> implicit_times = interleaved_best_times(o.min_seconds, {[&] {
-      const StepReport report = stepper1.step(model, clamp, loads, settings, state1);
-      iterations += report.solver_iterations;
-      ++steps;
-    }, [&] { (void)stepper2.step(model, clamp, loads, settings2, state2); }});
+    const std::vector<double> implicit_times = interleaved_best_times(
+        o.min_seconds, {[&] {
+                          const StepReport report = stepper1.step(model, clamp, loads, settings, state1);
+                          iterations += report.solver_iterations;
+                          ++steps;
+                        },
+                        [&] { (void)stepper2.step(model, clamp, loads, settings2, state2); }});
     row.implicit_step = implicit_times[0];
     row.implicit_step2 = implicit_times[1];
     row.implicit_iterations = static_cast<int>(iterations / std::max(1L, steps));
@@ -206,35 +213,43 @@ int run_bench(const BenchOptions& o) {
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
     for (const Row& r : rows) {
-      out.push_back({{"body", r.name}, {"cells", r.cells}, {"nodes", r.nodes}, {"springs", r.springs},
-                     {"bare_spring_pass_ms", 1e3 * r.bare},
-                     {"grid_bare_spring_pass_ms", r.grid_bare > 0 ? nlohmann::json(1e3 * r.grid_bare) : nlohmann::json()},
-                     {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
-                     {"two_bodies_at_once_ms", 1e3 * r.two_bodies},
-                     {"two_thread_ceiling", 2.0 * r.symplectic1 / r.two_bodies},
-                     {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}, {"2", 1e3 * r.verlet2}}},
-                     {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
-                     {"neo_hookean_symplectic_euler_ms", {{"1", 1e3 * r.neo_hookean1}}},
-                     {"neo_hookean_on_grid", r.neo_hookean_on_grid},
-                     {"neo_hookean_spring_lists_symplectic_euler_ms", {{"1", 1e3 * r.neo_hookean_lists1}}},
-                     {"neo_hookean_over_exact_bending", r.neo_hookean1 / r.exact_bending1},
-                     {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
-                     {"implicit_euler_threads_ms", r.implicit_step > 0 ? nlohmann::json{{"1", 1e3 * r.implicit_step},
-                                                                                      {"2", 1e3 * r.implicit_step2}}
-                                                                      : nlohmann::json()},
-                     {"implicit_cg_iterations", r.implicit_iterations},
-                     {"implicit_wall_per_simulated_second_s", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
+      out.push_back(
+          {{"body", r.name},
+           {"cells", r.cells},
+           {"nodes", r.nodes},
+           {"springs", r.springs},
+           {"bare_spring_pass_ms", 1e3 * r.bare},
+           {"grid_bare_spring_pass_ms", r.grid_bare > 0 ? nlohmann::json(1e3 * r.grid_bare) : nlohmann::json()},
+           {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
+           {"two_bodies_at_once_ms", 1e3 * r.two_bodies},
+           {"two_thread_ceiling", 2.0 * r.symplectic1 / r.two_bodies},
+           {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}, {"2", 1e3 * r.verlet2}}},
+           {"exact_bending_symplectic_euler_ms", {{"1", 1e3 * r.exact_bending1}}},
+           {"neo_hookean_symplectic_euler_ms", {{"1", 1e3 * r.neo_hookean1}}},
+           {"neo_hookean_on_grid", r.neo_hookean_on_grid},
+           {"neo_hookean_spring_lists_symplectic_euler_ms", {{"1", 1e3 * r.neo_hookean_lists1}}},
+           {"neo_hookean_over_exact_bending", r.neo_hookean1 / r.exact_bending1},
+           {"implicit_euler_ms", r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
+           {"implicit_euler_threads_ms",
+            r.implicit_step > 0 ? nlohmann::json{{"1", 1e3 * r.implicit_step}, {"2", 1e3 * r.implicit_step2}}
+                                : nlohmann::json()},
+           {"implicit_cg_iterations", r.implicit_iterations},
+           {"implicit_wall_per_simulated_second_s",
+            r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
     }
     std::cout << json_text(out) << "\n";
     return 0;
   }
-  std::printf("E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"
-              ">= %.2f s each, the explicit columns together and the implicit ones together)\n",
-              kBatches, o.min_seconds / kBatches);
-  std::printf("%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %10s %5s %10s %10s\n",
-              "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling",
-              "full/bare", "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap",
-              "nh 1t", "nh/exact", "nh lists", "implicit", "CG it", "s/sim s", "impl 2t");
+  std::printf(
+      "E = 1 MPa, nu = 0.3, 1 cm cells, clamped, gravity; times per step in ms (best of %d interleaved batches of\n"
+      ">= %.2f s each, the explicit columns together and the implicit ones together)\n",
+      kBatches, o.min_seconds / kBatches);
+  std::printf(
+      "%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %10s %5s %10s "
+      "%10s\n",
+      "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling", "full/bare",
+      "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap", "nh 1t", "nh/exact",
+      "nh lists", "implicit", "CG it", "s/sim s", "impl 2t");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -242,13 +257,14 @@ int run_bench(const BenchOptions& o) {
       std::snprintf(over_grid, sizeof over_grid, "%.2f", r.symplectic1 / r.grid_bare);
       std::snprintf(grid_rate, sizeof grid_rate, "%.3f", 1e-9 * r.springs / r.grid_bare);
     }
-    std::printf("%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %9.4f %7.2f |"
-                " %9.4f %7.2f %9.4f |",
-                r.name.c_str(), r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1,
-                1e3 * r.symplectic2, r.symplectic1 / r.symplectic2, 2.0 * r.symplectic1 / r.two_bodies,
-                r.symplectic1 / r.bare, over_grid, 1e-9 * r.springs / r.bare, grid_rate, 1e3 * r.verlet1,
-                1e3 * r.verlet2, 1e3 * r.exact_bending1, r.exact_bending1 / r.symplectic1, 1e3 * r.neo_hookean1,
-                r.neo_hookean1 / r.exact_bending1, 1e3 * r.neo_hookean_lists1);
+    std::printf(
+        "%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %9.4f %7.2f |"
+        " %9.4f %7.2f %9.4f |",
+        r.name.c_str(), r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2,
+        r.symplectic1 / r.symplectic2, 2.0 * r.symplectic1 / r.two_bodies, r.symplectic1 / r.bare, over_grid,
+        1e-9 * r.springs / r.bare, grid_rate, 1e3 * r.verlet1, 1e3 * r.verlet2, 1e3 * r.exact_bending1,
+        r.exact_bending1 / r.symplectic1, 1e3 * r.neo_hookean1, r.neo_hookean1 / r.exact_bending1,
+        1e3 * r.neo_hookean_lists1);
     if (r.implicit_step > 0) {
       std::printf(" %10.3f %5d %10.2f %10.3f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3,
                   1e3 * r.implicit_step2);
@@ -256,18 +272,19 @@ int run_bench(const BenchOptions& o) {
       std::printf(" %10s %5s %10s %10s\n", "-", "-", "-", "-");
     }
   }
-  std::printf("bare: one linear spring-force pass over the spring lists; grid bare: the same with implicit lattice\n"
-              "connectivity (boxes only: springs at fixed index offsets, plain loops), the issue's floor; symp: full\n"
-              "symplectic Euler step (springs, correction, inversion check, damping, integration); 2t gain: symp 1t over\n"
-              "symp 2t; ceiling: what two cores give two copies of the body stepped at once on one thread each (2 x\n"
-              "symp 1t over their time): the gain a 2-thread split would have with no cost of its own (a split can beat\n"
-              "it a little, as each half's arrays fit the caches better); full/bare, full/grid:\n"
-              "1-thread step over each floor; Gspring/s, grid G/s: springs per second of each floor;\n"
-              "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
-              "nh 1t: exact-bending cells with the neo-Hookean law (the scenes' default), nh/exact its cost over exact 1t;\n"
-              "nh lists: the same on the spring lists (where the grid passes do not take the body, as nh 1t);\n"
-              "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
-              "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads.\n");
+  std::printf(
+      "bare: one linear spring-force pass over the spring lists; grid bare: the same with implicit lattice\n"
+      "connectivity (boxes only: springs at fixed index offsets, plain loops), the issue's floor; symp: full\n"
+      "symplectic Euler step (springs, correction, inversion check, damping, integration); 2t gain: symp 1t over\n"
+      "symp 2t; ceiling: what two cores give two copies of the body stepped at once on one thread each (2 x\n"
+      "symp 1t over their time): the gain a 2-thread split would have with no cost of its own (a split can beat\n"
+      "it a little, as each half's arrays fit the caches better); full/bare, full/grid:\n"
+      "1-thread step over each floor; Gspring/s, grid G/s: springs per second of each floor;\n"
+      "exact 1t: the same step with the exact-bending model, exact/pap its cost over the paper's model;\n"
+      "nh 1t: exact-bending cells with the neo-Hookean law (the scenes' default), nh/exact its cost over exact 1t;\n"
+      "nh lists: the same on the spring lists (where the grid passes do not take the body, as nh 1t);\n"
+      "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
+      "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads.\n");
   return 0;
 }
 
@@ -277,12 +294,14 @@ Command add_bench_command(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand("bench", "Time each integrator per step on blocks and a voxelized sphere");
   cmd->add_option("--sizes", options->sizes, "blocks as NX,NY,NZ separated by ';'")->capture_default_str();
-  cmd->add_option("--sphere", options->sphere_cells_across, "cells across the voxelized sphere (0: none)")->capture_default_str();
+  cmd->add_option("--sphere", options->sphere_cells_across, "cells across the voxelized sphere (0: none)")
+      ->capture_default_str();
   cmd->add_option("--min-seconds", options->min_seconds,
                   "time each measurement at least this long [s], in 5 interleaved batches")
       ->check(finite_positive_number())
       ->capture_default_str();
-  cmd->add_option("--implicit-max-cells", options->implicit_max_cells, "time implicit steps up to this many cells")->capture_default_str();
+  cmd->add_option("--implicit-max-cells", options->implicit_max_cells, "time implicit steps up to this many cells")
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "print a JSON array instead of the table");
   return [options] { return run_bench(*options); };
 }

@@ -44,8 +44,8 @@ struct BenchContactOptions {
   bool json = false;
 };
 
-constexpr double kPressDepth = 0.01;   // [m]
-constexpr double kDragLength = 0.04;   // [m]
+constexpr double kPressDepth = 0.01;       // [m]
+constexpr double kDragLength = 0.04;       // [m]
 constexpr double kSmoothingWindow = 0.02;  // [s], the moving average the roughness is measured against
 
 // "a,b,c" as positive finite numbers; throws naming the flag and the part at fault.
@@ -142,9 +142,8 @@ Body organ(const std::string& path, double longest, int across) {
   Result<Voxelization> voxels = voxelize(*mesh, voxelize_options);
   if (!voxels) throw std::runtime_error(voxels.message());
   Body body{std::filesystem::path(path).filename().string() + ", " + std::to_string(across) + " across", {}, 4.0};
-  body.settings.lattice =
-      lattice_from_voxels(*voxels, std::vector<Material>(std::max<std::size_t>(1, mesh->parts.size()), tissue()),
-                          CellModel::kExactBending);
+  body.settings.lattice = lattice_from_voxels(
+      *voxels, std::vector<Material>(std::max<std::size_t>(1, mesh->parts.size()), tissue()), CellModel::kExactBending);
   body.settings.visual_mesh = *mesh;
   body.settings.contact.friction = 0.3;
   return body;
@@ -153,11 +152,11 @@ Body organ(const std::string& path, double longest, int across) {
 struct ProbeCase {
   std::string body;
   double radius = 0, speed = 0, step = 0;
-  std::string failure;   // empty when it ran
-  double deepest = 0;    // [m]
-  int drops = 0;         // steps whose force fell below half the step before's, while pressing
-  double drag_force = 0; // mean [N]
-  double roughness = 0;  // RMS of the force less its moving average, over the mean force
+  std::string failure;    // empty when it ran
+  double deepest = 0;     // [m]
+  int drops = 0;          // steps whose force fell below half the step before's, while pressing
+  double drag_force = 0;  // mean [N]
+  double roughness = 0;   // RMS of the force less its moving average, over the mean force
   double wall_per_simulated = 0;
 };
 
@@ -176,8 +175,8 @@ ProbeCase probe(const Body& body, double radius, double speed, double step) {
   const Eigen::Matrix3Xd& surface = bench.soft().surface_vertices();
   const Eigen::Vector3d centre = 0.5 * (surface.rowwise().minCoeff() + surface.rowwise().maxCoeff());
   const double high = surface.row(2).maxCoeff() + 0.1;
-  const std::optional<bullet::SoftBody::RayHit> hit =
-      bench.soft().ray_test(Eigen::Vector3d(centre.x() - 0.02, centre.y(), high), Eigen::Vector3d(centre.x() - 0.02, centre.y(), -0.1));
+  const std::optional<bullet::SoftBody::RayHit> hit = bench.soft().ray_test(
+      Eigen::Vector3d(centre.x() - 0.02, centre.y(), high), Eigen::Vector3d(centre.x() - 0.02, centre.y(), -0.1));
   if (!hit) {
     result.failure = "no surface under the probe";
     return result;
@@ -195,8 +194,8 @@ ProbeCase probe(const Body& body, double radius, double speed, double step) {
     return btTransform(btQuaternion::getIdentity(),
                        btVector3(btScalar(c.x()), btScalar(c.y()), btScalar(c.z() + 0.5 * length - radius)));
   };
-  btRigidBody* tool = bench.add_rigid(new btCapsuleShapeZ(btScalar(radius), btScalar(length - 2 * radius)), 0.0, place(0.0),
-                                      true);
+  btRigidBody* tool =
+      bench.add_rigid(new btCapsuleShapeZ(btScalar(radius), btScalar(length - 2 * radius)), 0.0, place(0.0), true);
   const int steps = static_cast<int>(std::lround((press + kDragLength / speed) / step));
   std::vector<double> drag;
   double previous = 0.0;
@@ -231,7 +230,8 @@ ProbeCase probe(const Body& body, double radius, double speed, double step) {
       mean /= static_cast<double>(to - from);
       squares += (drag[i] - mean) * (drag[i] - mean);
     }
-    result.roughness = result.drag_force > 0 ? std::sqrt(squares / static_cast<double>(drag.size())) / result.drag_force : 0;
+    result.roughness =
+        result.drag_force > 0 ? std::sqrt(squares / static_cast<double>(drag.size())) / result.drag_force : 0;
   }
   return result;
 }
@@ -240,9 +240,9 @@ struct DropCase {
   std::string body;
   double mass = 0;
   std::string failure;
-  double speed = 0;   // over the last 0.5 s [m/s]
-  double carried = 0; // the tissue's force on it over its weight
-  double sunk = 0;    // below the block's top [m]
+  double speed = 0;    // over the last 0.5 s [m/s]
+  double carried = 0;  // the tissue's force on it over its weight
+  double sunk = 0;     // below the block's top [m]
 };
 
 // A 3 cm box of `mass` dropped 5 mm onto the block's centre, 3 s at 1/60 s.
@@ -253,9 +253,9 @@ DropCase drop(const Body& body, double mass) {
   Bench bench(body.settings);
   const double half = 0.015;
   const double top = bench.soft().surface_vertices().row(2).maxCoeff();
-  btRigidBody* box = bench.add_rigid(new btBoxShape(btVector3(btScalar(half), btScalar(half), btScalar(half))), mass,
-                                     btTransform(btQuaternion::getIdentity(), btVector3(0, 0, btScalar(top + half + 0.005))),
-                                     false);
+  btRigidBody* box =
+      bench.add_rigid(new btBoxShape(btVector3(btScalar(half), btScalar(half), btScalar(half))), mass,
+                      btTransform(btQuaternion::getIdentity(), btVector3(0, 0, btScalar(top + half + 0.005))), false);
   if (!bench.run(2.5, 1.0 / 60)) {
     result.failure = bench.error();
     return result;
@@ -312,31 +312,42 @@ int run(const BenchContactOptions& o) {
     out["machine"] = cpu_name();
     out["probes"] = nlohmann::json::array();
     for (const ProbeCase& p : probes) {
-      out["probes"].push_back({{"body", p.body}, {"radius_m", p.radius}, {"speed_m_per_s", p.speed}, {"step_s", p.step},
-                               {"failure", p.failure}, {"deepest_m", p.deepest},
-                               {"allowed_m", std::max(0.5e-3, 0.1 * p.radius)}, {"force_drops", p.drops},
-                               {"drag_force_N", p.drag_force}, {"roughness", p.roughness},
+      out["probes"].push_back({{"body", p.body},
+                               {"radius_m", p.radius},
+                               {"speed_m_per_s", p.speed},
+                               {"step_s", p.step},
+                               {"failure", p.failure},
+                               {"deepest_m", p.deepest},
+                               {"allowed_m", std::max(0.5e-3, 0.1 * p.radius)},
+                               {"force_drops", p.drops},
+                               {"drag_force_N", p.drag_force},
+                               {"roughness", p.roughness},
                                {"wall_per_simulated", p.wall_per_simulated}});
     }
     out["drops"] = nlohmann::json::array();
     for (const DropCase& d : drops) {
-      out["drops"].push_back({{"body", d.body}, {"mass_kg", d.mass}, {"failure", d.failure}, {"speed_m_per_s", d.speed},
-                              {"carried_over_weight", d.carried}, {"sunk_m", d.sunk}});
+      out["drops"].push_back({{"body", d.body},
+                              {"mass_kg", d.mass},
+                              {"failure", d.failure},
+                              {"speed_m_per_s", d.speed},
+                              {"carried_over_weight", d.carried},
+                              {"sunk_m", d.sunk}});
     }
     std::cout << json_text(out) << "\n";
     return 0;
   }
-  std::printf("probes pressed %.0f mm and dragged %.0f mm; %s\n", 1e3 * kPressDepth, 1e3 * kDragLength, cpu_name().c_str());
-  std::printf("%-34s %6s %6s %7s %10s %8s %6s %8s %7s %7s\n", "body", "r mm", "cm/s", "step ms", "deepest mm", "allowed",
-              "drops", "drag N", "rough %", "wall/s");
+  std::printf("probes pressed %.0f mm and dragged %.0f mm; %s\n", 1e3 * kPressDepth, 1e3 * kDragLength,
+              cpu_name().c_str());
+  std::printf("%-34s %6s %6s %7s %10s %8s %6s %8s %7s %7s\n", "body", "r mm", "cm/s", "step ms", "deepest mm",
+              "allowed", "drops", "drag N", "rough %", "wall/s");
   for (const ProbeCase& p : probes) {
     std::printf("%-34s %6.1f %6.1f %7.2f ", p.body.c_str(), 1e3 * p.radius, 1e2 * p.speed, 1e3 * p.step);
     if (!p.failure.empty()) {
       std::printf("unstable: %s\n", p.failure.c_str());
       continue;
     }
-    std::printf("%10.3f %8.2f %6d %8.3f %7.1f %7.2f\n", 1e3 * p.deepest, 1e3 * std::max(0.5e-3, 0.1 * p.radius), p.drops,
-                p.drag_force, 1e2 * p.roughness, p.wall_per_simulated);
+    std::printf("%10.3f %8.2f %6d %8.3f %7.1f %7.2f\n", 1e3 * p.deepest, 1e3 * std::max(0.5e-3, 0.1 * p.radius),
+                p.drops, p.drag_force, 1e2 * p.roughness, p.wall_per_simulated);
   }
   std::printf("\n3 cm boxes dropped 5 mm onto the block, 3 s at 1/60 s\n%-34s %7s %14s %12s %8s\n", "body", "mass g",
               "speed mm/s", "carried/w", "sunk mm");
@@ -355,15 +366,18 @@ int run(const BenchContactOptions& o) {
 
 Command add_bench_contact_command(CLI::App& app) {
   auto options = std::make_shared<BenchContactOptions>();
-  CLI::App* cmd = app.add_subcommand("bench-contact", "Probes pressed and dragged over soft tissue, and instruments "
-                                                      "dropped on it, through the Bullet plugin: penetration, force, "
-                                                      "rest");
-  cmd->add_option("--mesh", options->mesh, "an organ mesh to probe besides the block (OBJ, STL, PLY, OFF, glTF or COLLADA)");
+  CLI::App* cmd = app.add_subcommand("bench-contact",
+                                     "Probes pressed and dragged over soft tissue, and instruments "
+                                     "dropped on it, through the Bullet plugin: penetration, force, "
+                                     "rest");
+  cmd->add_option("--mesh", options->mesh,
+                  "an organ mesh to probe besides the block (OBJ, STL, PLY, OFF, glTF or COLLADA)");
   cmd->add_option("--longest-side", options->longest_side, "the organ's longest side once scaled [m]")
       ->check(finite_positive_number())
       ->capture_default_str();
-  cmd->add_option("--cells-across", options->cells_across, "cells along the block's 10 cm side and the organ's longest, "
-                                                           "a,b,...")
+  cmd->add_option("--cells-across", options->cells_across,
+                  "cells along the block's 10 cm side and the organ's longest, "
+                  "a,b,...")
       ->capture_default_str();
   cmd->add_option("--radii", options->radii, "probe radii [m], a,b,...")->capture_default_str();
   cmd->add_option("--speeds", options->speeds, "probe speeds [m/s], a,b,...")->capture_default_str();

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <stdexcept>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -16,11 +16,11 @@
 
 #include "bench_support.h"
 #include "commands.h"
+#include "cubespring/model.h"
+#include "cubespring/stable_time_step.h"
 #include "json_output.h"
 #include "number_checks.h"
 #include "step_timing.h"
-#include "cubespring/model.h"
-#include "cubespring/stable_time_step.h"
 
 namespace cubespring::app {
 namespace {
@@ -121,7 +121,8 @@ int run_bench_layout(const LayoutOptions& o) {
     for (const double fill : parse_fills(o.fills)) {
       for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
         for (const bool inclusion : {false, true}) {
-          rows.push_back(bench_layouts(hollow_ball(o.cells_across, fill, inclusion), cell_model, inclusion, o.min_seconds));
+          rows.push_back(
+              bench_layouts(hollow_ball(o.cells_across, fill, inclusion), cell_model, inclusion, o.min_seconds));
         }
       }
       if (!o.json) std::fprintf(stderr, "benched fill %.2f\n", fill);
@@ -133,7 +134,9 @@ int run_bench_layout(const LayoutOptions& o) {
   if (o.json) {
     nlohmann::json out = nlohmann::json::array();
     for (const LayoutRow& r : rows) {
-      out.push_back({{"fill", r.fill}, {"cells", r.cells}, {"model", cell_model_name(r.model)},
+      out.push_back({{"fill", r.fill},
+                     {"cells", r.cells},
+                     {"model", cell_model_name(r.model)},
                      {"materials", materials_name(r.inclusion)},
                      {"lists_ms", {{"1", 1e3 * r.lists[0]}, {"2", 1e3 * r.lists[1]}}},
                      {"grid_ms", {{"1", 1e3 * r.grid[0]}, {"2", 1e3 * r.grid[1]}}},
@@ -142,9 +145,10 @@ int run_bench_layout(const LayoutOptions& o) {
     std::cout << json_text(out) << "\n";
     return 0;
   }
-  std::printf("Hollow balls of %d cells across (1 cm cells, E = 1 MPa, nu = 0.3, clamped, gravity): symplectic Euler\n"
-              "step in ms on the spring lists and on the grid passes (best of %d interleaved batches of >= %.2f s)\n",
-              o.cells_across, kBatches, o.min_seconds / kBatches);
+  std::printf(
+      "Hollow balls of %d cells across (1 cm cells, E = 1 MPa, nu = 0.3, clamped, gravity): symplectic Euler\n"
+      "step in ms on the spring lists and on the grid passes (best of %d interleaved batches of >= %.2f s)\n",
+      o.cells_across, kBatches, o.min_seconds / kBatches);
   std::printf("%6s %7s %-14s %-9s | %9s %9s %10s | %9s %9s %10s | %s\n", "fill", "cells", "model", "materials",
               "lists 1t", "grid 1t", "lists/grid", "lists 2t", "grid 2t", "lists/grid", "default");
   for (const LayoutRow& r : rows) {
@@ -153,10 +157,11 @@ int run_bench_layout(const LayoutOptions& o) {
                 r.lists[0] / r.grid[0], 1e3 * r.lists[1], 1e3 * r.grid[1], r.lists[1] / r.grid[1],
                 r.default_grid ? "grid" : "lists");
   }
-  std::printf("fill: cells over the cells of their bounding box; lists/grid > 1: the grid is faster; default: the\n"
-              "layout build_model() picks (the grid from a fill of %.2f, kDefaultMinGridFill); inclusion: the\n"
-              "ball's lowest third in x 10 times stiffer.\n",
-              kDefaultMinGridFill);
+  std::printf(
+      "fill: cells over the cells of their bounding box; lists/grid > 1: the grid is faster; default: the\n"
+      "layout build_model() picks (the grid from a fill of %.2f, kDefaultMinGridFill); inclusion: the\n"
+      "ball's lowest third in x 10 times stiffer.\n",
+      kDefaultMinGridFill);
   return 0;
 }
 

@@ -18,12 +18,12 @@
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
-#include "cubespring/bullet/soft_body.h"
 #include "commands.h"
+#include "cubespring/bullet/soft_body.h"
+#include "cubespring/scene/scene_frames.h"
 #include "default_scene.h"
 #include "json_output.h"
 #include "number_checks.h"
-#include "cubespring/scene/scene_frames.h"
 
 namespace cubespring::app {
 namespace {
@@ -31,9 +31,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 struct BenchRenderOptions {
-  std::string scene;                        // empty: the default scene
-  int frames = 10;                          // timed per picture size
-  double seconds = 0;                       // simulated for the physics figure [s]; 0: the whole story
+  std::string scene;   // empty: the default scene
+  int frames = 10;     // timed per picture size
+  double seconds = 0;  // simulated for the physics figure [s]; 0: the whole story
   std::string sizes = "640x360;1280x720";
   bool json = false;
 };
@@ -83,8 +83,8 @@ Result<std::vector<Size>> parse_picture_sizes(const std::string& text) {
 }
 
 // Draws and writes `frames` pictures of the world as it is, timing each part.
-Result<RenderTiming> time_render(const scene::Scene& scene, scene::SceneWorld& world, const Eigen::Matrix3Xd& rest, Size size,
-                                 int frames, const std::filesystem::path& folder) {
+Result<RenderTiming> time_render(const scene::Scene& scene, scene::SceneWorld& world, const Eigen::Matrix3Xd& rest,
+                                 Size size, int frames, const std::filesystem::path& folder) {
   scene::Scene sized = scene;
   sized.render.width = size.width;
   sized.render.height = size.height;
@@ -196,11 +196,12 @@ int run(const BenchRenderOptions& o) {
               1e3 * organ.sub_step, cpu_name().c_str());
   std::printf("physics: %.2f simulated s in %.2f wall s: %.2fx real time\n", simulated, physics_wall,
               simulated / physics_wall);
-  std::printf("  %ld sub-steps: elastic %.0f%%, surface %.0f%%, contact %.0f%%, planning %.0f%%, other %.0f%% "
-              "(contact and surface: %.0f%% of the sub-steps)\n",
-              parts.sub_steps, 100 * parts.elastic / physics_wall, 100 * parts.surface / physics_wall,
-              100 * parts.contact / physics_wall, 100 * parts.planning / physics_wall,
-              100 * (physics_wall - parts.sum()) / physics_wall, 100 * parts.contact_share());
+  std::printf(
+      "  %ld sub-steps: elastic %.0f%%, surface %.0f%%, contact %.0f%%, planning %.0f%%, other %.0f%% "
+      "(contact and surface: %.0f%% of the sub-steps)\n",
+      parts.sub_steps, 100 * parts.elastic / physics_wall, 100 * parts.surface / physics_wall,
+      100 * parts.contact / physics_wall, 100 * parts.planning / physics_wall,
+      100 * (physics_wall - parts.sum()) / physics_wall, 100 * parts.contact_share());
   std::printf("%-10s %8s %8s %8s %14s\n", "picture", "draw ms", "png ms", "fps", "fps with png");
   for (const RenderTiming& t : timings) {
     char size[32];
@@ -215,14 +216,16 @@ int run(const BenchRenderOptions& o) {
 
 Command add_bench_render_command(CLI::App& app) {
   auto options = std::make_shared<BenchRenderOptions>();
-  CLI::App* cmd = app.add_subcommand("bench-render", "Time the demo's parts on one scene: the physics against real "
-                                                     "time, and frames per second of the renderer at each size");
+  CLI::App* cmd = app.add_subcommand("bench-render",
+                                     "Time the demo's parts on one scene: the physics against real "
+                                     "time, and frames per second of the renderer at each size");
   cmd->add_option("scene", options->scene, "scene file (JSON, docs/scene-format.md); default: the demo's scene");
   cmd->add_option("--frames", options->frames, "frames timed per picture size")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  cmd->add_option("--seconds", options->seconds, "simulated time for the physics figure [s] (default: the scene's "
-                                                  "whole story, after it settles)")
+  cmd->add_option("--seconds", options->seconds,
+                  "simulated time for the physics figure [s] (default: the scene's "
+                  "whole story, after it settles)")
       ->check(finite_positive_number());
   cmd->add_option("--sizes", options->sizes, "picture sizes WIDTHxHEIGHT;...")->capture_default_str();
   cmd->add_flag("--json", options->json, "print one JSON object instead of the table");

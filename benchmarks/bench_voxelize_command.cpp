@@ -19,20 +19,20 @@
 #include <thread>
 #include <vector>
 
-#include <assimp/Exporter.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Exporter.hpp>
+#include <assimp/Importer.hpp>
 #include <nlohmann/json.hpp>
 
 #include "bench_support.h"
 #include "commands.h"
-#include "json_output.h"
-#include "step_timing.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/shapes.h"
 #include "cubespring/voxelize.h"
+#include "json_output.h"
+#include "step_timing.h"
 
 namespace cubespring::app {
 namespace {
@@ -56,9 +56,7 @@ struct BenchVoxelizeOptions {
   std::string keep;  // directory for the generated files; empty: a temporary one, removed after
 };
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 struct TorusSize {
   int around = 0;
@@ -102,10 +100,10 @@ void write_binary_ply(const TriangleMesh& mesh, const std::string& path) {
   scene.mRootNode->mNumMeshes = 1;
   scene.mRootNode->mMeshes = new unsigned[1]{0};
   scene.mNumMaterials = 1;
-  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene.mMaterials = new aiMaterial* [1] { new aiMaterial() };
   auto* out = new aiMesh();
   scene.mNumMeshes = 1;
-  scene.mMeshes = new aiMesh*[1]{out};
+  scene.mMeshes = new aiMesh* [1] { out };
   // triangles share vertices: saying so lets the exporter's own steps handle the indexed mesh
   scene.mFlags |= AI_SCENE_FLAGS_NON_VERBOSE_FORMAT;
 
@@ -116,7 +114,8 @@ void write_binary_ply(const TriangleMesh& mesh, const std::string& path) {
   out->mVertices = new aiVector3D[out->mNumVertices];
   for (int v = 0; v < mesh.num_vertices(); ++v) {
     const Eigen::Vector3d p = mesh.vertices.col(v);
-    out->mVertices[v] = aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()), static_cast<ai_real>(p.z()));
+    out->mVertices[v] =
+        aiVector3D(static_cast<ai_real>(p.x()), static_cast<ai_real>(p.y()), static_cast<ai_real>(p.z()));
   }
   out->mNumFaces = static_cast<unsigned>(mesh.num_triangles());
   out->mFaces = new aiFace[out->mNumFaces];
@@ -184,13 +183,13 @@ struct Row {
   double ratio() const { return total() / assimp_read; }
 };
 
-
 void check_options(const BenchVoxelizeOptions& o) {
   if (o.triangles.empty() || o.cells_across.empty()) {
     throw std::runtime_error("--triangles and --cells-across each need at least one value");
   }
   for (const int n : o.triangles) {
-    if (n < 18) throw std::runtime_error("--triangles " + std::to_string(n) + ": each count must be >= 18 (a 3 x 3 torus)");
+    if (n < 18)
+      throw std::runtime_error("--triangles " + std::to_string(n) + ": each count must be >= 18 (a 3 x 3 torus)");
   }
   for (const int n : o.cells_across) {
     if (n < 1) throw std::runtime_error("--cells-across " + std::to_string(n) + ": each count must be >= 1");
@@ -234,7 +233,8 @@ std::vector<Row> bench_file(const std::string& path, int triangles, const BenchV
     voxelize_options.cells_across = across;
     row.voxelize = time_per_call([&] {
       Result<Voxelization> voxels = voxelize(mesh, voxelize_options);
-      if (!voxels) throw std::runtime_error(path + " at " + std::to_string(across) + " cells across: " + voxels.message());
+      if (!voxels)
+        throw std::runtime_error(path + " at " + std::to_string(across) + " cells across: " + voxels.message());
       row.cells = static_cast<long>(voxels->cells.size());
       row.relative_volume_difference = voxels->relative_volume_difference();
     });
@@ -248,9 +248,10 @@ void print_table(const std::vector<Row>& rows, const BenchVoxelizeOptions& o) {
   const std::string cpu = cpu_name();
   std::printf("machine: %s, %u hardware threads\n", cpu.empty() ? "unknown CPU" : cpu.c_str(),
               std::thread::hardware_concurrency());
-  std::printf("torus R = %g m, r = %g m written as binary PLY by assimp; times per call in ms (mean over >= %.1f s;\n"
-              "a call that alone takes longer is timed once)\n",
-              kMajorRadius, kMinorRadius, o.min_seconds);
+  std::printf(
+      "torus R = %g m, r = %g m written as binary PLY by assimp; times per call in ms (mean over >= %.1f s;\n"
+      "a call that alone takes longer is timed once)\n",
+      kMajorRadius, kMinorRadius, o.min_seconds);
   std::printf("%10s %6s | %10s %10s %11s %10s %8s | %9s %8s\n", "triangles", "across", "assimp_ms", "load_ms",
               "voxelize_ms", "total_ms", "ratio", "cells", "vol_err%");
   for (const Row& r : rows) {
@@ -258,9 +259,10 @@ void print_table(const std::vector<Row>& rows, const BenchVoxelizeOptions& o) {
                 1e3 * r.assimp_read, 1e3 * r.load, 1e3 * r.voxelize, 1e3 * r.total(), r.ratio(), r.cells,
                 100.0 * r.relative_volume_difference);
   }
-  std::printf("assimp: Importer::ReadFile with load_mesh's post-processing; load: load_mesh (assimp, conversion,\n"
-              "joined vertices, validation); total: load + voxelize; ratio: total / assimp;\n"
-              "vol_err%%: (voxel volume - mesh volume) / mesh volume.\n");
+  std::printf(
+      "assimp: Importer::ReadFile with load_mesh's post-processing; load: load_mesh (assimp, conversion,\n"
+      "joined vertices, validation); total: load + voxelize; ratio: total / assimp;\n"
+      "vol_err%%: (voxel volume - mesh volume) / mesh volume.\n");
   for (const Row& r : rows) {
     if (r.triangles != kTargetTriangles || r.cells_across != kTargetCellsAcross) continue;
     std::printf("target: 100k triangles at 128 cells across in < %g s: %.3f s (%s)\n", kTargetSeconds, r.total(),
@@ -281,7 +283,8 @@ int run_bench_voxelize(const BenchVoxelizeOptions& o) {
       write_binary_ply(torus, path);
       if (!o.json) {
         std::fprintf(stderr, "wrote %s: %d x %d torus, %d triangles%s, in %.2f s\n", path.c_str(), size.around,
-                     size.tube, size.triangles(), size.triangles() == requested ? "" : " (the nearest to the count asked)",
+                     size.tube, size.triangles(),
+                     size.triangles() == requested ? "" : " (the nearest to the count asked)",
                      seconds_since(write_start));
       }
       for (Row& row : bench_file(path, size.triangles(), o)) rows.push_back(row);
@@ -326,7 +329,8 @@ Command add_bench_voxelize_command(CLI::App& app) {
   cmd->add_option("--min-seconds", options->min_seconds, "time each measurement at least this long [s]")
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print a JSON array instead of the table");
-  cmd->add_option("--keep", options->keep, "write the mesh files to this directory and keep them (default: a temporary one)");
+  cmd->add_option("--keep", options->keep,
+                  "write the mesh files to this directory and keep them (default: a temporary one)");
   return [options] { return run_bench_voxelize(*options); };
 }
 

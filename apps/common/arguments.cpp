@@ -41,7 +41,8 @@ Result<Eigen::Vector3i> parse_counts(const std::string& flag, const std::string&
 
 Result<Eigen::Vector3d> parse_sizes(const std::string& flag, const std::string& text) {
   const std::vector<std::string> parts = split(text);
-  const std::string expected = flag + " " + text + ": expected one size or three sizes HX,HY,HZ, each a number > 0 (metres)";
+  const std::string expected =
+      flag + " " + text + ": expected one size or three sizes HX,HY,HZ, each a number > 0 (metres)";
   if (parts.size() != 1 && parts.size() != 3) return Status::error(expected);
   Eigen::Vector3d sizes;
   for (std::size_t i = 0; i < parts.size(); ++i) {

@@ -18,7 +18,7 @@ namespace cubespring::app {
 namespace {
 
 constexpr double kFieldOfViewDegrees = 25;
-constexpr double kUsedWidth = 0.78;   // of the image: the legend takes the right edge
+constexpr double kUsedWidth = 0.78;  // of the image: the legend takes the right edge
 constexpr double kUsedHeight = 0.9;
 const Eigen::Vector3f kWireOverReference{0.9f, 0.1f, 0.1f};  // red shows on every viridis colour
 const Eigen::Vector3f kWireOverLattice{0.1f, 0.1f, 0.1f};
@@ -32,7 +32,8 @@ Eigen::Matrix2Xi outer_edges(const Model& model, const LatticeSurface& surface) 
   for (int node : surface.nodes) on_surface[static_cast<std::size_t>(node)] = true;
   std::vector<Eigen::Index> kept;
   for (Eigen::Index s = 0; s < all.cols(); ++s) {
-    if (on_surface[static_cast<std::size_t>(all(0, s))] && on_surface[static_cast<std::size_t>(all(1, s))]) kept.push_back(s);
+    if (on_surface[static_cast<std::size_t>(all(0, s))] && on_surface[static_cast<std::size_t>(all(1, s))])
+      kept.push_back(s);
   }
   Eigen::Matrix2Xi edges(2, static_cast<Eigen::Index>(kept.size()));
   for (std::size_t k = 0; k < kept.size(); ++k) edges.col(static_cast<Eigen::Index>(k)) = all.col(kept[k]);

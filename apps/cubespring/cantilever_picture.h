@@ -22,9 +22,9 @@ struct CantileverPicture {
 Camera cantilever_camera(const Eigen::AlignedBox3d& box, int width, int height);
 
 struct CantileverPictureOptions {
-  int width = 1280;     ///< [pixels]
-  int height = 720;     ///< [pixels]
-  double magnify = 1;   ///< displacements are drawn this many times their size (colours stay true), > 0
+  int width = 1280;    ///< [pixels]
+  int height = 720;    ///< [pixels]
+  double magnify = 1;  ///< displacements are drawn this many times their size (colours stay true), > 0
 };
 
 /// The deformed lattice's outer edges as a wire model over a surface coloured by displacement

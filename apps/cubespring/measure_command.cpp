@@ -17,11 +17,11 @@
 
 #include "arguments.h"
 #include "commands.h"
-#include "json_output.h"
-#include "number_checks.h"
 #include "cubespring/experiments.h"
 #include "cubespring/fem_comparison.h"
 #include "cubespring/static_solver.h"
+#include "json_output.h"
+#include "number_checks.h"
 #ifdef CUBESPRING_HAS_RENDER
 #include "cantilever_picture.h"
 #endif
@@ -34,7 +34,7 @@ struct MeasureOptions {
   double young = 1e6;
   double poisson = 0.3;
   double density = 1000.0;
-  std::string cells;      // empty: the experiment's default
+  std::string cells;  // empty: the experiment's default
   std::string cell_size = "0.01";
   double strain = 1e-4;
   bool strain_given = false;  // else the finite-strain experiments take their own default
@@ -264,11 +264,16 @@ void report_table(const ExperimentResult& r) {
 
 // Names the flag behind a library validation message.
 std::string with_flag(const std::string& message) {
-  const std::pair<const char*, const char*> flags[] = {
-      {"young_modulus", "--young"}, {"poisson_ratio", "--poisson"}, {"density", "--density"},
-      {"strain", "--strain"},       {"gravity", "--gravity"},       {"cell size", "--cell-size"},
-      {"edge_fraction", "--edge-fraction"}, {"twist_factor", "--twist-factor"}, {"cells = ", "--cells"},
-      {"cell_size", "--cell-size"}};
+  const std::pair<const char*, const char*> flags[] = {{"young_modulus", "--young"},
+                                                       {"poisson_ratio", "--poisson"},
+                                                       {"density", "--density"},
+                                                       {"strain", "--strain"},
+                                                       {"gravity", "--gravity"},
+                                                       {"cell size", "--cell-size"},
+                                                       {"edge_fraction", "--edge-fraction"},
+                                                       {"twist_factor", "--twist-factor"},
+                                                       {"cells = ", "--cells"},
+                                                       {"cell_size", "--cell-size"}};
   for (const auto& [field, flag] : flags) {
     if (message.find(field) != std::string::npos) return std::string(flag) + ": " + message;
   }
@@ -319,13 +324,13 @@ int run_measure(const MeasureOptions& o) {
   settings.law = parse_cell_law(o.law).value();  // CLI11 checked the name
   settings.support = parse_support(o.support).value();
   const Experiment chosen = experiment.value();
-  const std::string default_cells = chosen == Experiment::kCantilever   ? "16,4,4"
-                                    : chosen == Experiment::kSelfWeight ? "12,12,12"
-                                    : chosen == Experiment::kBondedCompression ? "8,8,8"
-                                    : chosen == Experiment::kUniaxial || chosen == Experiment::kSimpleShear ||
-                                            chosen == Experiment::kHydrostatic
-                                        ? "4,4,4"
-                                        : "1,1,1";
+  const std::string default_cells =
+      chosen == Experiment::kCantilever          ? "16,4,4"
+      : chosen == Experiment::kSelfWeight        ? "12,12,12"
+      : chosen == Experiment::kBondedCompression ? "8,8,8"
+      : chosen == Experiment::kUniaxial || chosen == Experiment::kSimpleShear || chosen == Experiment::kHydrostatic
+          ? "4,4,4"
+          : "1,1,1";
   if (!o.strain_given) {  // what tissue sees: 40% compression, a shear of 0.5, a tenth of its volume
     if (chosen == Experiment::kUniaxial) settings.strain = -0.4;
     if (chosen == Experiment::kSimpleShear) settings.strain = 0.5;
@@ -399,22 +404,22 @@ int run_measure(const MeasureOptions& o) {
 
 Command add_measure_command(CLI::App& app) {
   auto options = std::make_shared<MeasureOptions>();
-  CLI::App* cmd = app.add_subcommand("measure", "Run one of the paper's virtual experiments and measure E, nu, G, B "
-                                                "or the cantilever's tip deflection; at finite strain, a block's sag "
-                                                "under its own weight or a stress-strain curve against the "
-                                                "neo-Hookean law");
+  CLI::App* cmd = app.add_subcommand("measure",
+                                     "Run one of the paper's virtual experiments and measure E, nu, G, B "
+                                     "or the cantilever's tip deflection; at finite strain, a block's sag "
+                                     "under its own weight or a stress-strain curve against the "
+                                     "neo-Hookean law");
   cmd->add_option("experiment", options->experiment,
                   "elongation, shear, inflation, cantilever or self-weight; finite-strain curves: uniaxial, "
                   "simple-shear, hydrostatic or bonded-compression")
       ->required()
       ->check(CLI::IsMember({"elongation", "shear", "inflation", "cantilever", "self-weight", "uniaxial",
                              "simple-shear", "hydrostatic", "bonded-compression"}));
-  cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->check(finite_number())
+  cmd->add_option("--young", options->young, "Young's modulus E [Pa]")->check(finite_number())->capture_default_str();
+  cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")
+      ->check(finite_number())
       ->capture_default_str();
-  cmd->add_option("--poisson", options->poisson, "Poisson's ratio nu, in (-0.25, 0.5)")->check(finite_number())
-      ->capture_default_str();
-  cmd->add_option("--density", options->density, "density [kg/m^3]")->check(finite_number())
-      ->capture_default_str();
+  cmd->add_option("--density", options->density, "density [kg/m^3]")->check(finite_number())->capture_default_str();
   cmd->add_option("--max-memory", options->max_memory,
                   "refuse blocks whose estimate (the body and its static solver's factorisation) exceeds BYTES "
                   "(default: half of this machine's memory)")
@@ -435,7 +440,8 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--gravity", options->gravity, "cantilever and self-weight: gravity along -z [m/s^2]")
       ->check(finite_number())
       ->capture_default_str();
-  cmd->add_option("--control", options->control, "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
+  cmd->add_option("--control", options->control,
+                  "shear: displacement (affine, every boundary node) or force (the paper's tractions)")
       ->check(CLI::IsMember({"displacement", "force"}))
       ->capture_default_str();
   cmd->add_option("--support", options->support,
@@ -464,9 +470,14 @@ Command add_measure_command(CLI::App& app) {
   cmd->add_option("--reference", options->reference,
                   "cantilever: a CalculiX result (.frd) of the same beam in metres: compare node by node, and draw "
                   "the lattice as a wire over the reference's colours");
-  cmd->add_option("--width", options->width, "--png: image width [pixels]")->check(CLI::Range(16, 4096))->capture_default_str();
-  cmd->add_option("--height", options->height, "--png: image height [pixels]")->check(CLI::Range(16, 4096))->capture_default_str();
-  cmd->add_option("--magnify", options->magnify, "--png: draw displacements this many times their size (colours stay true)")
+  cmd->add_option("--width", options->width, "--png: image width [pixels]")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  cmd->add_option("--height", options->height, "--png: image height [pixels]")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  cmd->add_option("--magnify", options->magnify,
+                  "--png: draw displacements this many times their size (colours stay true)")
       ->check(finite_positive_number())
       ->capture_default_str();
   return [options, strain, model] {

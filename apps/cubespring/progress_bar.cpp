@@ -16,7 +16,11 @@ constexpr double kRedrawSeconds = 0.1;
 }  // namespace
 
 ProgressBar::ProgressBar(int frames, double duration)
-    : frames_(frames), duration_(duration), terminal_(isatty(fileno(stderr)) != 0), start_(Clock::now()), last_draw_(start_) {}
+    : frames_(frames),
+      duration_(duration),
+      terminal_(isatty(fileno(stderr)) != 0),
+      start_(Clock::now()),
+      last_draw_(start_) {}
 
 void ProgressBar::update(int frames_done, double time) {
   const Clock::time_point now = Clock::now();
@@ -41,11 +45,12 @@ void ProgressBar::finish(int frames_done, double time) {
 void ProgressBar::draw(int frames_done, double time) {
   const double fraction = duration_ > 0.0 ? std::clamp(time / duration_, 0.0, 1.0) : 1.0;
   const int filled = static_cast<int>(fraction * kBarWidth + 0.5);
-  const std::string bar = std::string(static_cast<std::size_t>(filled), '#') + std::string(static_cast<std::size_t>(kBarWidth - filled), '.');
+  const std::string bar = std::string(static_cast<std::size_t>(filled), '#') +
+                          std::string(static_cast<std::size_t>(kBarWidth - filled), '.');
   const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
   const double speed = wall > 0.0 ? time / wall : 0.0;
-  std::fprintf(stderr, "%s[%s] frame %d/%d  t = %.2f s  %.2fx real time%s", terminal_ ? "\r" : "", bar.c_str(), frames_done,
-               frames_, time, speed, terminal_ ? "  " : "\n");
+  std::fprintf(stderr, "%s[%s] frame %d/%d  t = %.2f s  %.2fx real time%s", terminal_ ? "\r" : "", bar.c_str(),
+               frames_done, frames_, time, speed, terminal_ ? "  " : "\n");
   std::fflush(stderr);
 }
 

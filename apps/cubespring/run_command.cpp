@@ -45,7 +45,8 @@ int run(const RunCommandOptions& options) {
   std::cout << "wrote " << output->frames << " frames, tool_forces.csv and tool_force.png to " << scene.output;
   if (options.out.empty()) {
     std::error_code ignored;
-    std::cout << " (" << fs::absolute(scene.output, ignored).lexically_normal().string() << "; --out DIR writes elsewhere)";
+    std::cout << " (" << fs::absolute(scene.output, ignored).lexically_normal().string()
+              << "; --out DIR writes elsewhere)";
   }
   std::cout << "\n";
   return 0;
@@ -55,9 +56,10 @@ int run(const RunCommandOptions& options) {
 
 Command add_run_command(CLI::App& app) {
   auto options = std::make_shared<RunCommandOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "Play a scene (default: a probe pressing into a liver, from data/scenes/) "
-                                            "and write PNG frames, tool_forces.csv and tool_force.png; "
-                                            "`cubespring` alone does the same");
+  CLI::App* cmd = app.add_subcommand("run",
+                                     "Play a scene (default: a probe pressing into a liver, from data/scenes/) "
+                                     "and write PNG frames, tool_forces.csv and tool_force.png; "
+                                     "`cubespring` alone does the same");
   cmd->add_option("scene", options->scene, "scene file (JSON, docs/scene-format.md)");
   cmd->add_option("--frames", options->frames, "render N frames evenly over the scene's duration")
       ->check(CLI::Range(1, 1000000));  // as the scene's "frames"

@@ -12,16 +12,17 @@
 #include <string>
 #include <vector>
 
-#include "cubespring/render/image.h"
 #include "cubespring/render/force_plot.h"
-#include "progress_bar.h"
+#include "cubespring/render/image.h"
 #include "cubespring/scene/scene_frames.h"
 #include "cubespring/scene/scene_world.h"
+#include "progress_bar.h"
 
 namespace cubespring::app {
 
 const char* const kToolForceCsvHeader =
-    "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,penetration_m";
+    "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,"
+    "penetration_m";
 
 namespace {
 
@@ -77,7 +78,6 @@ std::string seconds(double t) {
   return text;
 }
 
-
 // One CSV row per tool for the step that ended at t, and the magnitudes for the plot.
 void record_forces(scene::SceneWorld& world, double t, std::ostream& csv, std::vector<ForceSeries>& series) {
   const auto number = [](double value) {
@@ -92,7 +92,8 @@ void record_forces(scene::SceneWorld& world, double t, std::ostream& csv, std::v
     const bullet::ContactWrench w = world.world().getContactWrench(tool.body.get());
     // the plugin gives the torque about the collision body's origin; the CSV's is about the tip
     const Eigen::Isometry3d pose = world.tool_pose(tool);
-    const Eigen::Vector3d torque = w.torque + (pose * tool.shape_offset.translation() - pose.translation()).cross(w.force);
+    const Eigen::Vector3d torque =
+        w.torque + (pose * tool.shape_offset.translation() - pose.translation()).cross(w.force);
     csv << time << ',' << tool.name << ',' << number(w.force.x()) << ',' << number(w.force.y()) << ','
         << number(w.force.z()) << ',' << number(w.force.norm()) << ',' << number(torque.x()) << ','
         << number(torque.y()) << ',' << number(torque.z()) << ',' << w.contacts << ',' << number(w.penetration) << '\n';

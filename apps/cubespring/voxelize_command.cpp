@@ -11,10 +11,10 @@
 
 #include "arguments.h"
 #include "commands.h"
-#include "json_output.h"
-#include "number_checks.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/voxelize.h"
+#include "json_output.h"
+#include "number_checks.h"
 
 namespace cubespring::app {
 namespace {
@@ -50,15 +50,16 @@ nlohmann::json problems_json(const Voxelization& v) {
 nlohmann::json report_json(const VoxelizeCommandOptions& options, const Voxelization& v) {
   nlohmann::json parts = nlohmann::json::array();
   for (const VoxelPart& p : v.parts) {
-    parts.push_back({{"name", p.name},
-                     {"material", p.material_name},
-                     {"triangles", p.triangles},
-                     {"mesh_volume", p.mesh_volume},
-                     {"voxel_volume", p.voxel_volume},
-                     {"relative_volume_difference", p.mesh_volume > 0 ? p.voxel_volume / p.mesh_volume - 1.0 : 0.0},
-                     {"cells", p.cells},
-                     {"merged_into", p.merged_into >= 0 ? nlohmann::json(v.parts[static_cast<std::size_t>(p.merged_into)].name)
-                                                       : nlohmann::json(nullptr)}});
+    parts.push_back(
+        {{"name", p.name},
+         {"material", p.material_name},
+         {"triangles", p.triangles},
+         {"mesh_volume", p.mesh_volume},
+         {"voxel_volume", p.voxel_volume},
+         {"relative_volume_difference", p.mesh_volume > 0 ? p.voxel_volume / p.mesh_volume - 1.0 : 0.0},
+         {"cells", p.cells},
+         {"merged_into", p.merged_into >= 0 ? nlohmann::json(v.parts[static_cast<std::size_t>(p.merged_into)].name)
+                                            : nlohmann::json(nullptr)}});
   }
   return {{"file", options.mesh},
           {"scale", options.scale},
@@ -99,8 +100,8 @@ void print_merged_parts(const Voxelization& v, int owner) {
 void print_report(const VoxelizeCommandOptions& options, const TriangleMesh& mesh, const Voxelization& v) {
   std::printf("mesh %s: %zu parts, %d triangles (scale %g)\n", options.mesh.c_str(), v.parts.size(),
               mesh.num_triangles(), options.scale);
-  std::printf("  %-20s %-20s %10s %14s %14s %8s %9s\n", "part", "material", "triangles", "mesh [m^3]",
-              "voxels [m^3]", "diff", "cells");
+  std::printf("  %-20s %-20s %10s %14s %14s %8s %9s\n", "part", "material", "triangles", "mesh [m^3]", "voxels [m^3]",
+              "diff", "cells");
   for (const VoxelPart& p : v.parts) {
     const double diff = p.mesh_volume > 0 ? 100.0 * (p.voxel_volume / p.mesh_volume - 1.0) : 0.0;
     if (p.merged_into >= 0) continue;  // summed up under the part whose cells they share
@@ -165,15 +166,15 @@ int run_voxelize(const VoxelizeCommandOptions& options) {
 
 Command add_voxelize_command(CLI::App& app) {
   auto options = std::make_shared<VoxelizeCommandOptions>();
-  CLI::App* cmd = app.add_subcommand("voxelize", "Turn a surface mesh file into cube cells and report volumes, "
-                                                 "counts, memory and the mesh's problems");
-  cmd->add_option("mesh", options->mesh, "surface mesh file: OBJ, STL, PLY, OFF, glTF or COLLADA")
-      ->required();
+  CLI::App* cmd = app.add_subcommand("voxelize",
+                                     "Turn a surface mesh file into cube cells and report volumes, "
+                                     "counts, memory and the mesh's problems");
+  cmd->add_option("mesh", options->mesh, "surface mesh file: OBJ, STL, PLY, OFF, glTF or COLLADA")->required();
   CLI::Option* size = cmd->add_option("--cell-size", options->cell_size, "cell size H or HX,HY,HZ [m]");
-  CLI::Option* across = cmd->add_option("--cells-across", options->cells_across,
-                                        "cubic cells, this many along the mesh's longest side")
-                            ->check(CLI::Range(1, 100000))
-                            ->capture_default_str();
+  CLI::Option* across =
+      cmd->add_option("--cells-across", options->cells_across, "cubic cells, this many along the mesh's longest side")
+          ->check(CLI::Range(1, 100000))
+          ->capture_default_str();
   size->excludes(across);
   cmd->add_option("--scale", options->scale, "metres per file unit (0.001 for millimetres)")
       ->check(finite_positive_number())
@@ -182,15 +183,17 @@ Command add_voxelize_command(CLI::App& app) {
       ->check(CLI::IsMember({"centre", "fraction"}))
       ->capture_default_str();
   // checked here, so that the errors name the flags before the mesh is read
-  cmd->add_option("--min-fraction", options->min_fraction, "rule fraction: the covered fraction a cell needs, in (0, 1]")
+  cmd->add_option("--min-fraction", options->min_fraction,
+                  "rule fraction: the covered fraction a cell needs, in (0, 1]")
       ->check(fraction_number())
       ->capture_default_str();
   cmd->add_option("--samples", options->samples, "rule fraction: samples per cell along each axis, 1..8")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   cmd->add_flag("--drop-islands", options->drop_islands, "keep only the largest face-connected piece of cells");
-  cmd->add_option("--max-memory", options->max_memory, "refuse grids whose estimate exceeds BYTES (default: half "
-                                                       "of this machine's memory)")
+  cmd->add_option("--max-memory", options->max_memory,
+                  "refuse grids whose estimate exceeds BYTES (default: half "
+                  "of this machine's memory)")
       ->check(byte_count());
   cmd->add_flag("--json", options->json, "print one JSON object on stdout");
   return [options] { return run_voxelize(*options); };

@@ -72,9 +72,7 @@ struct Part {
   Mesh mesh;
 };
 
-Vec3 corner(const Mesh& mesh, const Triangle& triangle, int which) {
-  return mesh.vertices[triangle[which]];
-}
+Vec3 corner(const Mesh& mesh, const Triangle& triangle, int which) { return mesh.vertices[triangle[which]]; }
 
 Vec3 area_vector(const Mesh& mesh, const Triangle& triangle) {
   const Vec3 a = corner(mesh, triangle, 0);
@@ -111,14 +109,12 @@ void round_to_written_resolution(Mesh& mesh) {
 Mesh icosahedron() {
   const double phi = (1.0 + std::sqrt(5.0)) / 2.0;
   Mesh mesh;
-  mesh.vertices = {{-1, phi, 0}, {1, phi, 0}, {-1, -phi, 0}, {1, -phi, 0},
-                   {0, -1, phi}, {0, 1, phi}, {0, -1, -phi}, {0, 1, -phi},
-                   {phi, 0, -1}, {phi, 0, 1}, {-phi, 0, -1}, {-phi, 0, 1}};
+  mesh.vertices = {{-1, phi, 0},  {1, phi, 0},  {-1, -phi, 0}, {1, -phi, 0}, {0, -1, phi},  {0, 1, phi},
+                   {0, -1, -phi}, {0, 1, -phi}, {phi, 0, -1},  {phi, 0, 1},  {-phi, 0, -1}, {-phi, 0, 1}};
   for (Vec3& v : mesh.vertices) v.normalize();
-  mesh.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                    {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                    {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                    {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  mesh.triangles = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+                    {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   return mesh;
 }
 
@@ -193,14 +189,12 @@ double liver_radius(const Vec3& direction) {
   // side more (flatter) than the dome.
   const double outline_exponent = 2.5;
   const double thickness_exponent = lerp(3.0, 2.4, upper);
-  const double in_plane =
-      std::pow(std::pow(std::abs(direction.x() / half_length), outline_exponent) +
-                   std::pow(std::abs(direction.y() / half_width), outline_exponent),
-               1.0 / outline_exponent);
+  const double in_plane = std::pow(std::pow(std::abs(direction.x() / half_length), outline_exponent) +
+                                       std::pow(std::abs(direction.y() / half_width), outline_exponent),
+                                   1.0 / outline_exponent);
   const double across = std::abs(direction.z() / half_thickness);
   const double gauge =
-      std::pow(std::pow(in_plane, thickness_exponent) + std::pow(across, thickness_exponent),
-               1.0 / thickness_exponent);
+      std::pow(std::pow(in_plane, thickness_exponent) + std::pow(across, thickness_exponent), 1.0 / thickness_exponent);
 
   // a gentle notch through the front border, a little left of the middle
   const double notch_u = -0.15;
@@ -275,12 +269,10 @@ std::vector<Ring> probe_rings() {
   std::vector<Ring> rings;
   for (int k = 1; k <= kProbeTipRings; ++k) {
     const double from_pole = 0.5 * kPi * k / kProbeTipRings;  // angle from the tip's pole
-    rings.push_back(
-        {kProbeRadius * (1.0 - std::cos(from_pole)), kProbeRadius * std::sin(from_pole)});
+    rings.push_back({kProbeRadius * (1.0 - std::cos(from_pole)), kProbeRadius * std::sin(from_pole)});
   }
   for (int k = 1; k <= kProbeShaftRings; ++k) {
-    rings.push_back(
-        {kProbeRadius + (kProbeLength - kProbeRadius) * k / kProbeShaftRings, kProbeRadius});
+    rings.push_back({kProbeRadius + (kProbeLength - kProbeRadius) * k / kProbeShaftRings, kProbeRadius});
   }
   return rings;
 }
@@ -293,17 +285,14 @@ Mesh probe() {
   for (const Ring& ring : rings) {
     for (int i = 0; i < n; ++i) {
       const double angle = 2.0 * kPi * i / n;
-      mesh.vertices.push_back(
-          {ring.radius * std::cos(angle), ring.radius * std::sin(angle), ring.z});
+      mesh.vertices.push_back({ring.radius * std::cos(angle), ring.radius * std::sin(angle), ring.z});
     }
   }
   const int cap_centre = mesh.num_vertices();
   mesh.vertices.push_back({0.0, 0.0, kProbeLength});
 
   // vertex 0 is the tip's pole, then kProbeSegments vertices per ring
-  const auto on_ring = [](int ring, int i) {
-    return 1 + ring * kProbeSegments + (i % kProbeSegments);
-  };
+  const auto on_ring = [](int ring, int i) { return 1 + ring * kProbeSegments + (i % kProbeSegments); };
   const int last_ring = static_cast<int>(rings.size()) - 1;
   for (int i = 0; i < n; ++i) {
     mesh.triangles.push_back({0, on_ring(0, i + 1), on_ring(0, i)});
@@ -355,18 +344,17 @@ void check_closed_oriented_manifold(const Part& part) {
       const int a = t[k];
       const int b = t[(k + 1) % 3];
       const int c = t[(k + 2) % 3];
-      require(
-          next_around[a].emplace(b, c).second,
-          part.name + ": edge " + vertex_text(a) + " -> " + vertex_text(b) +
-              " is used twice in the same direction (inconsistent orientation or non-manifold)");
+      require(next_around[a].emplace(b, c).second,
+              part.name + ": edge " + vertex_text(a) + " -> " + vertex_text(b) +
+                  " is used twice in the same direction (inconsistent orientation or non-manifold)");
     }
   }
   for (int a = 0; a < part.mesh.num_vertices(); ++a) {
     const std::string where = part.name + ": " + vertex_text(a);
     require(!next_around[a].empty(), where + " is used by no triangle");
     for (const auto& [b, c] : next_around[a]) {
-      require(next_around[b].count(a) == 1, where + ": edge to " + vertex_text(b) +
-                                                " has no triangle on its other side (a hole)");
+      require(next_around[b].count(a) == 1,
+              where + ": edge to " + vertex_text(b) + " has no triangle on its other side (a hole)");
     }
   }
   // now every walk step has a next triangle: count the steps until the walk comes back
@@ -379,8 +367,7 @@ void check_closed_oriented_manifold(const Part& part) {
       neighbour = fan.at(neighbour);
       ++walked;
     } while (neighbour != start && walked <= fan.size());
-    require(walked == fan.size(),
-            part.name + ": " + vertex_text(a) + " is shared by more than one fan of triangles");
+    require(walked == fan.size(), part.name + ": " + vertex_text(a) + " is shared by more than one fan of triangles");
   }
 }
 
@@ -399,16 +386,14 @@ void check_one_sphere(const Part& part) {
   }
   int pieces = 0;
   for (int v = 0; v < mesh.num_vertices(); ++v) pieces += root[v] == v ? 1 : 0;
-  require(pieces == 1,
-          part.name + ": the surface has " + std::to_string(pieces) + " separate pieces");
+  require(pieces == 1, part.name + ": the surface has " + std::to_string(pieces) + " separate pieces");
   // every edge is shared by two triangles: edges = 3 * triangles / 2
   const int euler = mesh.num_vertices() - 3 * mesh.num_triangles() / 2 + mesh.num_triangles();
   require(euler == 2, part.name + ": Euler characteristic " + std::to_string(euler) + ", not 2");
 }
 
 void check_positive_volume(const Part& part) {
-  require(signed_volume(part.mesh) > 0.0,
-          part.name + ": signed volume is not positive (triangles face inwards)");
+  require(signed_volume(part.mesh) > 0.0, part.name + ": signed volume is not positive (triangles face inwards)");
 }
 
 void check_surface(const Part& part) {
@@ -435,8 +420,7 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denominator = 1.0 / (va + vb + vc);
   return a + ab * (vb * denominator) + ac * (vc * denominator);
 }
@@ -444,8 +428,7 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 double distance_to_surface(const Vec3& p, const Mesh& surface) {
   double nearest = INFINITY;
   for (const Triangle& t : surface.triangles) {
-    const Vec3 q = closest_point_on_triangle(p, corner(surface, t, 0), corner(surface, t, 1),
-                                             corner(surface, t, 2));
+    const Vec3 q = closest_point_on_triangle(p, corner(surface, t, 0), corner(surface, t, 1), corner(surface, t, 2));
     nearest = std::min(nearest, (p - q).norm());
   }
   return nearest;
@@ -480,8 +463,7 @@ std::string fixed7(double value) {
   return text;
 }
 
-void write_obj(const std::filesystem::path& path, const std::string& mtl_name,
-               const std::vector<Part>& parts) {
+void write_obj(const std::filesystem::path& path, const std::string& mtl_name, const std::vector<Part>& parts) {
   std::ofstream out(path, std::ios::binary);
   out << "# generated by data/generator/make_demo_meshes.cpp; units: metres\n";
   out << "mtllib " << mtl_name << "\n";
@@ -493,8 +475,7 @@ void write_obj(const std::filesystem::path& path, const std::string& mtl_name,
       out << "v " << fixed7(v.x()) << " " << fixed7(v.y()) << " " << fixed7(v.z()) << "\n";
     }
     for (const Triangle& t : part.mesh.triangles) {
-      out << "f " << t[0] + first_vertex << " " << t[1] + first_vertex << " " << t[2] + first_vertex
-          << "\n";
+      out << "f " << t[0] + first_vertex << " " << t[1] + first_vertex << " " << t[2] + first_vertex << "\n";
     }
     first_vertex += part.mesh.num_vertices();
   }
@@ -513,12 +494,11 @@ void write_mtl(const std::filesystem::path& path, const std::vector<Material>& m
   out << "# generated by data/generator/make_demo_meshes.cpp\n";
   for (const Material& m : materials) {
     char text[256];
-    std::snprintf(
-        text, sizeof text,
-        "\nnewmtl %s\nKa 0.000 0.000 0.000\nKd %.3f %.3f %.3f\nKs %.3f %.3f %.3f\nNs %.1f\n"
-        "d 1\nillum 2\n",
-        m.name.c_str(), m.diffuse.x(), m.diffuse.y(), m.diffuse.z(), m.specular.x(), m.specular.y(),
-        m.specular.z(), m.shininess);
+    std::snprintf(text, sizeof text,
+                  "\nnewmtl %s\nKa 0.000 0.000 0.000\nKd %.3f %.3f %.3f\nKs %.3f %.3f %.3f\nNs %.1f\n"
+                  "d 1\nillum 2\n",
+                  m.name.c_str(), m.diffuse.x(), m.diffuse.y(), m.diffuse.z(), m.specular.x(), m.specular.y(),
+                  m.specular.z(), m.shininess);
     out << text;
   }
   require(!out.fail(), "cannot write " + path.string());
@@ -527,12 +507,12 @@ void write_mtl(const std::filesystem::path& path, const std::vector<Material>& m
 void print_summary(const Part& part) {
   const AxisBox box = bounds(part.mesh);
   const double volume = signed_volume(part.mesh);
-  std::printf("%-7s %5zu vertices %5zu triangles  material %s\n", part.name.c_str(),
-              part.mesh.vertices.size(), part.mesh.triangles.size(), part.material.c_str());
-  std::printf("        box min (%.4f, %.4f, %.4f) max (%.4f, %.4f, %.4f) m\n", box.min.x(),
-              box.min.y(), box.min.z(), box.max.x(), box.max.y(), box.max.z());
-  std::printf("        size %.4f x %.4f x %.4f m, volume %.4e m^3 = %.4f litres (%.1f ml)\n",
-              box.size().x(), box.size().y(), box.size().z(), volume, volume * 1e3, volume * 1e6);
+  std::printf("%-7s %5zu vertices %5zu triangles  material %s\n", part.name.c_str(), part.mesh.vertices.size(),
+              part.mesh.triangles.size(), part.material.c_str());
+  std::printf("        box min (%.4f, %.4f, %.4f) max (%.4f, %.4f, %.4f) m\n", box.min.x(), box.min.y(), box.min.z(),
+              box.max.x(), box.max.y(), box.max.z());
+  std::printf("        size %.4f x %.4f x %.4f m, volume %.4e m^3 = %.4f litres (%.1f ml)\n", box.size().x(),
+              box.size().y(), box.size().z(), volume, volume * 1e3, volume * 1e6);
 }
 
 }  // namespace
@@ -551,8 +531,8 @@ int main(int argc, char** argv) {
     // centre ends up, the point the liver is star-shaped about.
     Mesh liver = liver_about_its_centre();
     const AxisBox shaped = bounds(liver);
-    const Vec3 liver_centre{-0.5 * (shaped.min.x() + shaped.max.x()),
-                            -0.5 * (shaped.min.y() + shaped.max.y()), -shaped.min.z()};
+    const Vec3 liver_centre{-0.5 * (shaped.min.x() + shaped.max.x()), -0.5 * (shaped.min.y() + shaped.max.y()),
+                            -shaped.min.z()};
     translate(liver, liver_centre);
     round_to_written_resolution(liver);
 
@@ -561,28 +541,24 @@ int main(int argc, char** argv) {
     const Vec3 probe_line = Vec3(kProbePointX, 0.0, 0.0) - liver_centre;
     const double top = surface_height_on_vertical({probe_line.x(), probe_line.y(), 0.0}, 1.0);
     const double bottom = surface_height_on_vertical({probe_line.x(), probe_line.y(), 0.0}, -1.0);
-    const Vec3 tumour_centre{kProbePointX, 0.0,
-                             liver_centre.z() + lerp(bottom, top, kTumourHeightFraction)};
+    const Vec3 tumour_centre{kProbePointX, 0.0, liver_centre.z() + lerp(bottom, top, kTumourHeightFraction)};
     Mesh tumour = tumour_at(tumour_centre);
     round_to_written_resolution(tumour);
 
     Mesh probe_mesh = probe();
     round_to_written_resolution(probe_mesh);
 
-    const std::vector<Part> organ{{"liver", "liver_tissue", liver},
-                                  {"tumour", "tumour_tissue", tumour}};
+    const std::vector<Part> organ{{"liver", "liver_tissue", liver}, {"tumour", "tumour_tissue", tumour}};
     const std::vector<Part> instrument{{"probe", "probe_steel", probe_mesh}};
     for (const Part& part : organ) check_surface(part);
     for (const Part& part : instrument) check_surface(part);
     const double clearance = check_tumour_inside_liver(tumour, liver, liver_centre);
 
     write_obj(output_dir / "liver.obj", "liver.mtl", organ);
-    write_mtl(output_dir / "liver.mtl",
-              {{"liver_tissue", {0.45, 0.09, 0.07}, {0.25, 0.25, 0.25}, 40.0},
-               {"tumour_tissue", {0.86, 0.80, 0.66}, {0.15, 0.15, 0.15}, 20.0}});
+    write_mtl(output_dir / "liver.mtl", {{"liver_tissue", {0.45, 0.09, 0.07}, {0.25, 0.25, 0.25}, 40.0},
+                                         {"tumour_tissue", {0.86, 0.80, 0.66}, {0.15, 0.15, 0.15}, 20.0}});
     write_obj(output_dir / "probe.obj", "probe.mtl", instrument);
-    write_mtl(output_dir / "probe.mtl",
-              {{"probe_steel", {0.62, 0.64, 0.67}, {0.80, 0.80, 0.80}, 200.0}});
+    write_mtl(output_dir / "probe.mtl", {{"probe_steel", {0.62, 0.64, 0.67}, {0.80, 0.80, 0.80}, 200.0}});
 
     for (const Part& part : organ) print_summary(part);
     for (const Part& part : instrument) print_summary(part);

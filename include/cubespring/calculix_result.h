@@ -16,9 +16,9 @@ namespace cubespring {
 /// A finite-element solution, read from a CalculiX result file to compare a lattice with it or to
 /// draw it (the cantilever picture of `cubespring measure cantilever --reference`).
 struct FemSolution {
-  std::vector<int> node_ids;          ///< CalculiX's node numbers, one per column below
-  Eigen::Matrix3Xd rest_positions;    ///< node coordinates [m]
-  Eigen::Matrix3Xd displacements;     ///< the last displacement field in the file [m]
+  std::vector<int> node_ids;        ///< CalculiX's node numbers, one per column below
+  Eigen::Matrix3Xd rest_positions;  ///< node coordinates [m]
+  Eigen::Matrix3Xd displacements;   ///< the last displacement field in the file [m]
   /// The outer faces of the solid elements (faces that no other element shares) on their corner
   /// nodes, as triangles (3 x m) of column indices, counter-clockwise seen from outside.
   Eigen::Matrix3Xi surface;

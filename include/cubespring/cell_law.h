@@ -37,14 +37,14 @@ inline constexpr double kBarrierVolumeRatio = 0.5;
 /// Constants of the neo-Hookean cell term for one material on one cell shape (built by
 /// build_model; docs/model-neo-hookean.md).
 struct NeoHookeanConstants {
-  double rest_volume = 0;                 ///< V0 [m^3]
-  Eigen::Vector3d cell_size{0, 0, 0};     ///< (hx, hy, hz) [m]
-  double c10 = 0;                         ///< G / 2 [Pa]
-  double half_bulk = 0;                   ///< 1 / D1 = B / 2 [Pa]
-  double barrier = 0;                     ///< the barrier's modulus, B [Pa]
+  double rest_volume = 0;                   ///< V0 [m^3]
+  Eigen::Vector3d cell_size{0, 0, 0};       ///< (hx, hy, hz) [m]
+  double c10 = 0;                           ///< G / 2 [Pa]
+  double half_bulk = 0;                     ///< 1 / D1 = B / 2 [Pa]
+  double barrier = 0;                       ///< the barrier's modulus, B [Pa]
   Eigen::Vector3d edge_stiffness{0, 0, 0};  ///< the cell's 4 edges along each axis together [N/m]
-  double diagonal_stiffness = 0;          ///< each of the 4 body diagonals [N/m]
-  double diagonal_length = 0;             ///< rest length of a body diagonal [m]
+  double diagonal_stiffness = 0;            ///< each of the 4 body diagonals [N/m]
+  double diagonal_length = 0;               ///< rest length of a body diagonal [m]
 };
 
 }  // namespace cubespring

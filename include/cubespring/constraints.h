@@ -38,8 +38,8 @@ class Constraints {
   /// [lower, upper] [m] to its rest value plus `displacement` [m], leaving the other components as
   /// they were (free, or driven by another call): a frictionless support (displacement 0) or
   /// platen. Errors name an axis out of range, a displacement that is not finite or an empty box.
-  Status prescribe_box_axis_displacement(const Model& model, const Eigen::Vector3d& lower,
-                                         const Eigen::Vector3d& upper, int axis, double displacement);
+  Status prescribe_box_axis_displacement(const Model& model, const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                                         int axis, double displacement);
   /// Drives component `axis` of one node to `coordinate` [m] (the others as they were).
   Status prescribe_axis_position(int node, int axis, double coordinate);
   /// Makes a node free again.

@@ -63,10 +63,10 @@ Result<Support> parse_support(const std::string& name);
 struct ExperimentSettings {
   Material material;
   CellModel model = CellModel::kBaudet2007;
-  ExactBendingParameters exact_bending;           ///< used when model is kExactBending
-  CellLaw law = CellLaw::kSprings;                ///< the cells' large-strain law (cell_law.h)
-  Eigen::Vector3i cells{1, 1, 1};                 ///< block size in cells
-  Eigen::Vector3d cell_size{0.01, 0.01, 0.01};    ///< [m]
+  ExactBendingParameters exact_bending;         ///< used when model is kExactBending
+  CellLaw law = CellLaw::kSprings;              ///< the cells' large-strain law (cell_law.h)
+  Eigen::Vector3i cells{1, 1, 1};               ///< block size in cells
+  Eigen::Vector3d cell_size{0.01, 0.01, 0.01};  ///< [m]
   /// Load size as the continuum strain it causes [-]: sigma = E S (elongation), gamma = S (shear),
   /// each side shrinks by S (inflation, P = 3 B S). Not used by the cantilever and self-weight.
   /// The finite-strain experiments take it as their end point (Experiment), in [-0.6, 1], not 0.
@@ -74,9 +74,9 @@ struct ExperimentSettings {
   /// Finite-strain experiments: the curve's points, equally spaced from 0 to strain (>= 1), each
   /// solved from the one before.
   int curve_points = 8;
-  double gravity = 9.81;                          ///< cantilever and self-weight [m/s^2], along -z
+  double gravity = 9.81;  ///< cantilever and self-weight [m/s^2], along -z
   ShearControl shear_control = ShearControl::kDisplacement;
-  Support support = Support::kBonded;             ///< self-weight only
+  Support support = Support::kBonded;  ///< self-weight only
   /// Refuse a block whose static solve would take more memory than this [bytes]
   /// (estimate_block_factorisation, static_solver.h); 0: half this machine's memory.
   std::uint64_t max_memory_bytes = 0;
@@ -132,7 +132,7 @@ struct ExperimentResult {
   /// Finite-strain experiments: the curve (state holds its last point).
   std::vector<CurvePoint> curve;
   Model model;
-  State state;   ///< the static equilibrium
+  State state;  ///< the static equilibrium
   int load_steps = 0;
   int newton_iterations = 0;
 };

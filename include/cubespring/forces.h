@@ -62,22 +62,22 @@ struct ForceEngine;  // internal: src/forces/force_engine.h
 /// ForceOptions::min_grid_fill change; one workspace may serve several bodies in turn, at the
 /// cost of a rebuild at each change.
 struct ForceWorkspace {
-  Eigen::Matrix3Xd spring_vector;         ///< x of the second node minus x of the first [m]
-  std::vector<double> spring_length;      ///< current length [m]
+  Eigen::Matrix3Xd spring_vector;             ///< x of the second node minus x of the first [m]
+  std::vector<double> spring_length;          ///< current length [m]
   std::vector<double> spring_inverse_length;  ///< 1 / length, 0 for a degenerate spring [1/m]
-  std::vector<double> spring_rate;        ///< d(length)/dt [m/s]
-  std::vector<double> spring_own_tension; ///< the spring's own tension and damping, no correction [N]
-  std::vector<double> spring_tension;     ///< total tension (spring + correction), filled for the stiffness [N]
-  Eigen::Matrix3Xd cell_tension;          ///< correction tension on each axis' edges [N]
-  std::vector<std::uint8_t> cell_crushed; ///< 1 where the inversion recovery acts
+  std::vector<double> spring_rate;            ///< d(length)/dt [m/s]
+  std::vector<double> spring_own_tension;     ///< the spring's own tension and damping, no correction [N]
+  std::vector<double> spring_tension;         ///< total tension (spring + correction), filled for the stiffness [N]
+  Eigen::Matrix3Xd cell_tension;              ///< correction tension on each axis' edges [N]
+  std::vector<std::uint8_t> cell_crushed;     ///< 1 where the inversion recovery acts
   std::vector<Eigen::Matrix3Xd> block_halo;  ///< forces of each block's springs and cells on the next block's nodes [N]
-  std::vector<int> block_crushed;         ///< crushed cells found by each block
-  std::vector<double> block_fastest;      ///< largest squared speed each block gave a node [m^2/s^2]
-  std::vector<double> grid_arrays;        ///< arrays of the grid passes (src/forces/grid/grid_forces.h)
-  std::vector<int> crushed_corners;       ///< nodes of the crushed cells, when the grid passes kicked
+  std::vector<int> block_crushed;            ///< crushed cells found by each block
+  std::vector<double> block_fastest;         ///< largest squared speed each block gave a node [m^2/s^2]
+  std::vector<double> grid_arrays;           ///< arrays of the grid passes (src/forces/grid/grid_forces.h)
+  std::vector<int> crushed_corners;          ///< nodes of the crushed cells, when the grid passes kicked
   std::shared_ptr<const void> grid_arrays_layout;  ///< the grid layout grid_arrays belong to
-  GridSplit grid_split;                   ///< how the grid passes share the layers among threads
-  std::shared_ptr<const ForceEngine> engine;  ///< built from the model by the passes
+  GridSplit grid_split;                            ///< how the grid passes share the layers among threads
+  std::shared_ptr<const ForceEngine> engine;       ///< built from the model by the passes
   void resize(const Model& model);
 };
 
@@ -85,8 +85,8 @@ struct ForceWorkspace {
 /// damping, gravity and nodal loads. docs/model-baudet2007.md gives the formulas. Throws
 /// std::invalid_argument when state.positions, state.velocities (with damping; without, it may
 /// be empty) or loads.nodal_forces (or empty) has not one column per node.
-void compute_forces(const Model& model, const State& state, const Loads& loads,
-                    const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces);
+void compute_forces(const Model& model, const State& state, const Loads& loads, const ForceOptions& options,
+                    ForceWorkspace& workspace, Eigen::Matrix3Xd& forces);
 
 /// Internal elastic energy [J]: springs, correction and inversion recovery.
 double elastic_energy(const Model& model, const Eigen::Matrix3Xd& positions);

@@ -26,12 +26,12 @@ const char* integrator_name(Integrator integrator);
 
 struct StepSettings {
   Integrator integrator = Integrator::kSymplecticEuler;
-  double time_step = 1e-4;              ///< dt [s], > 0
-  int threads = 1;                      ///< threads of the force passes and the implicit step's
-                                        ///< conjugate gradients; results do not depend on it
-  double solver_tolerance = 1e-6;       ///< implicit: CG relative residual, finite and > 0
-  int solver_max_iterations = 2000;     ///< implicit: CG iteration cap, >= 1 (a residual that turns
-                                        ///< NaN stops CG before it: solver-failed)
+  double time_step = 1e-4;           ///< dt [s], > 0
+  int threads = 1;                   ///< threads of the force passes and the implicit step's
+                                     ///< conjugate gradients; results do not depend on it
+  double solver_tolerance = 1e-6;    ///< implicit: CG relative residual, finite and > 0
+  int solver_max_iterations = 2000;  ///< implicit: CG iteration cap, >= 1 (a residual that turns
+                                     ///< NaN stops CG before it: solver-failed)
   /// A node faster than this is taken as a blow-up [m/s], >= 0 (infinity: none); 0 means 10 times
   /// the fastest pressure wave speed of the body's materials.
   double speed_limit = 0.0;
@@ -60,9 +60,9 @@ const char* step_status_name(StepStatus status);
 
 struct StepReport {
   StepStatus status = StepStatus::kOk;
-  std::string message;          ///< what went wrong, with figures; empty when ok
-  int solver_iterations = 0;    ///< implicit: CG iterations (products with the matrix)
-  double solver_residual = 0;   ///< implicit: CG relative residual reached (of its updated residual)
+  std::string message;         ///< what went wrong, with figures; empty when ok
+  int solver_iterations = 0;   ///< implicit: CG iterations (products with the matrix)
+  double solver_residual = 0;  ///< implicit: CG relative residual reached (of its updated residual)
   bool ok() const { return status == StepStatus::kOk; }
 };
 
@@ -76,8 +76,8 @@ class Stepper {
  public:
   explicit Stepper(const Model& model);
 
-  StepReport step(const Model& model, const Constraints& constraints, const Loads& loads,
-                  const StepSettings& settings, State& state);
+  StepReport step(const Model& model, const Constraints& constraints, const Loads& loads, const StepSettings& settings,
+                  State& state);
 
   /// The nodal forces [N] (3 x num_nodes) the last step computed last: for symplectic Euler and
   /// implicit Euler those at the step's start state, which its kick used (springs, correction,

@@ -66,7 +66,6 @@ Status check_lattice_size(double cells, std::uint64_t memory_limit = 0);
 
 /// A box of counts.x() x counts.y() x counts.z() cells spanning
 /// [0, nx hx] x [0, ny hy] x [0, nz hz], all of one material.
-LatticeDesc box_lattice(const Eigen::Vector3i& counts, const Eigen::Vector3d& cell_size,
-                        const Material& material);
+LatticeDesc box_lattice(const Eigen::Vector3i& counts, const Eigen::Vector3d& cell_size, const Material& material);
 
 }  // namespace cubespring

@@ -13,8 +13,8 @@ namespace cubespring {
 /// The outside of a body's lattice: every cell face that no other cell shares (the faces of
 /// cavities included), as two triangles turning counter-clockwise seen from outside the body.
 struct LatticeSurface {
-  std::vector<int> nodes;       ///< the lattice node behind each surface vertex, each node once
-  Eigen::Matrix3Xi triangles;   ///< (3 x m) indices into `nodes`
+  std::vector<int> nodes;      ///< the lattice node behind each surface vertex, each node once
+  Eigen::Matrix3Xi triangles;  ///< (3 x m) indices into `nodes`
 };
 
 /// The boundary faces of the lattice's cells, in cell order.

@@ -46,10 +46,10 @@ inline constexpr double kSoftTissueMassDamping = 40.0;
 Status validate(const Material& material);
 
 /// Continuum moduli of the material [Pa].
-double shear_modulus(const Material& material);         ///< G = E / (2 (1 + nu))
-double bulk_modulus(const Material& material);          ///< B = E / (3 (1 - 2 nu))
-double lame_lambda(const Material& material);           ///< lambda = E nu / ((1 + nu)(1 - 2 nu))
-double p_wave_modulus(const Material& material);        ///< lambda + 2 G
+double shear_modulus(const Material& material);   ///< G = E / (2 (1 + nu))
+double bulk_modulus(const Material& material);    ///< B = E / (3 (1 - 2 nu))
+double lame_lambda(const Material& material);     ///< lambda = E nu / ((1 + nu)(1 - 2 nu))
+double p_wave_modulus(const Material& material);  ///< lambda + 2 G
 /// Speed of the fastest (pressure) wave [m/s]: sqrt((lambda + 2 G) / rho).
 double pressure_wave_speed(const Material& material);
 

@@ -49,10 +49,10 @@ struct Model {
   int major_axis = 2;
 
   // nodes (num_nodes)
-  Eigen::Matrix3Xd rest_positions;       ///< (3 x num_nodes) [m]
+  Eigen::Matrix3Xd rest_positions;               ///< (3 x num_nodes) [m]
   std::vector<Eigen::Vector3i> node_grid_index;  ///< grid index of each node
-  Eigen::VectorXd mass;                  ///< [kg], lumped: each cell gives 1/8 of its mass to each corner
-  Eigen::VectorXd mass_damping;          ///< Rayleigh alpha times mass [kg/s]
+  Eigen::VectorXd mass;                          ///< [kg], lumped: each cell gives 1/8 of its mass to each corner
+  Eigen::VectorXd mass_damping;                  ///< Rayleigh alpha times mass [kg/s]
 
   // springs (num_springs); spring s pulls spring_nodes[s][0] and [1] together when stretched
   std::vector<std::array<int, 2>> spring_nodes;
@@ -138,8 +138,8 @@ inline constexpr int kMinMajorLayerNodes = 256;
 /// is built by whoever steps it, and rebuilt when the model's revision changes. This calls
 /// model.mark_changed(); min_fill is ignored (the grid's fill is ForceOptions::min_grid_fill and
 /// StepSettings::min_grid_fill now).
-[[deprecated("call model.mark_changed(); choose the grid with ForceOptions::min_grid_fill")]]
-void update_grid_layout(Model& model, double min_fill = kDefaultMinGridFill);
+[[deprecated("call model.mark_changed(); choose the grid with ForceOptions::min_grid_fill")]] void update_grid_layout(
+    Model& model, double min_fill = kDefaultMinGridFill);
 
 /// Per-cell spring stiffnesses and correction of one material and cell shape
 /// (docs/model-baudet2007.md, sections 2-4).
@@ -149,8 +149,7 @@ struct CellCalibration {
   Eigen::Matrix3d correction;      ///< D [Pa]
   double twist_stiffness = 0;      ///< zeta G [Pa]; 0 for the paper's model
 };
-Result<CellCalibration> calibrate_cell(CellModel model, const Material& material,
-                                       const Eigen::Vector3d& cell_size,
+Result<CellCalibration> calibrate_cell(CellModel model, const Material& material, const Eigen::Vector3d& cell_size,
                                        const ExactBendingParameters& parameters = {});
 
 }  // namespace cubespring

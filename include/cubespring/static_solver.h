@@ -21,10 +21,10 @@ struct StaticProgress {
 };
 
 struct StaticSettings {
-  int initial_load_steps = 1;       ///< the load is applied in this many equal increments at first
-  int max_load_steps = 256;         ///< increments are halved on failure down to 1 / max_load_steps
-  int max_newton_iterations = 40;   ///< per increment
-  double tolerance = 1e-9;          ///< residual force relative to the applied load (L2 norms)
+  int initial_load_steps = 1;      ///< the load is applied in this many equal increments at first
+  int max_load_steps = 256;        ///< increments are halved on failure down to 1 / max_load_steps
+  int max_newton_iterations = 40;  ///< per increment
+  double tolerance = 1e-9;         ///< residual force relative to the applied load (L2 norms)
   /// An equilibrium whose exact stiffness has a direction of negative curvature is unstable (a
   /// saddle or a maximum of the energy): the solver leaves it along that direction, downhill, and
   /// solves again, at most this many times in a solve; 0 reports it unstable at once.
@@ -61,11 +61,10 @@ struct StaticReport {
 /// the Newton step is not downhill, it takes the force's direction), and load stepping (the loads
 /// and the driven nodes' displacements ramp from zero to full). Every equilibrium is checked for
 /// stability (StaticReport::converged); an unstable one is left along a direction of negative
-/// curvature and solved again (StaticSettings::max_instability_escapes). state.positions holds the result; velocities are
-/// zeroed. Free bodies (no driven node) are solved in the range of the stiffness: rigid and
-/// zero-energy modes are not excited by self-equilibrated loads. Loads or constraints that do not
-/// fit the body, a gravity that is not finite or settings out of range are refused (the message
-/// says which) and the state is left as it was.
+/// curvature and solved again (StaticSettings::max_instability_escapes). state.positions holds the result; velocities
+/// are zeroed. Free bodies (no driven node) are solved in the range of the stiffness: rigid and zero-energy modes are
+/// not excited by self-equilibrated loads. Loads or constraints that do not fit the body, a gravity that is not finite
+/// or settings out of range are refused (the message says which) and the state is left as it was.
 StaticReport solve_static(const Model& model, const Constraints& constraints, const Loads& loads,
                           const StaticSettings& settings, State& state);
 

@@ -41,8 +41,8 @@ class StiffnessAssembler {
 
   /// `threads` share the rows (from 1024 nodes a thread); the matrix has the same bits on any
   /// thread count.
-  void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind,
-                double stiffness_scale, double damping_scale, SparseMatrix& matrix, int threads = 1);
+  void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind, double stiffness_scale,
+                double damping_scale, SparseMatrix& matrix, int threads = 1);
 
   /// The same matrix, assembled into the pattern itself rather than a copy of it: for a caller
   /// that needs one matrix (the stable-step helper), one copy of the matrix in memory instead of
@@ -73,14 +73,14 @@ class StiffnessAssembler {
                        const NodeRows& rows, SparseMatrix& matrix) const;
 
   SparseMatrix pattern_;
-  bool pattern_handed_over_ = false;                      // by assemble_once
-  std::vector<int> diagonal_position_;                    // per node: own position in its row
-  std::vector<std::array<int, 2>> spring_position_;      // per spring: j in row i, i in row j
-  std::vector<std::array<int, 64>> cell_position_;       // per cell: corner q in row of corner p
-  std::vector<Eigen::Matrix3d> positive_correction_;      // per cell: PSD part of D
-  std::vector<Eigen::Matrix3d> positive_of_;              // per cell: the D it is the part of
-  int spring_span_ = 0;  // the most nodes between a spring's two ends
-  int cell_span_ = 0;    // the most nodes between a cell's lowest and highest corner
+  bool pattern_handed_over_ = false;                  // by assemble_once
+  std::vector<int> diagonal_position_;                // per node: own position in its row
+  std::vector<std::array<int, 2>> spring_position_;   // per spring: j in row i, i in row j
+  std::vector<std::array<int, 64>> cell_position_;    // per cell: corner q in row of corner p
+  std::vector<Eigen::Matrix3d> positive_correction_;  // per cell: PSD part of D
+  std::vector<Eigen::Matrix3d> positive_of_;          // per cell: the D it is the part of
+  int spring_span_ = 0;                               // the most nodes between a spring's two ends
+  int cell_span_ = 0;                                 // the most nodes between a cell's lowest and highest corner
   ForceWorkspace tensions_;  // the springs' and cells' tensions at the positions, kept: an implicit
                              // step or Newton iteration allocates no per-spring arrays
 };

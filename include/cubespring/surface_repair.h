@@ -20,8 +20,8 @@ struct SurfaceProblems {
   int components = 0;            ///< edge-connected pieces of surface, over all parts
 
   bool clean() const {
-    return open_edges == 0 && non_manifold_edges == 0 && flipped_triangles == 0 &&
-           degenerate_triangles == 0 && duplicate_triangles == 0;
+    return open_edges == 0 && non_manifold_edges == 0 && flipped_triangles == 0 && degenerate_triangles == 0 &&
+           duplicate_triangles == 0;
   }
 };
 
@@ -29,7 +29,7 @@ struct SurfaceProblems {
 /// A solid is a part, or several parts whose surfaces share edges (a closed tool split into
 /// pieces by material): only together do they enclose a volume.
 struct RepairedSurface {
-  TriangleMesh mesh;                          ///< same vertices; triangles dropped or turned; parts kept
+  TriangleMesh mesh;  ///< same vertices; triangles dropped or turned; parts kept
   SurfaceProblems problems;
   std::vector<int> part_solid;                ///< solid of each part
   std::vector<std::vector<int>> solid_parts;  ///< parts of each solid, in file order

@@ -24,9 +24,9 @@ struct MeshPart {
 /// A triangle surface of one or more parts, in metres. This is all that voxelizing needs: a
 /// simulator with its own triangles fills it directly; cubespring::mesh fills it from a file.
 struct TriangleMesh {
-  Eigen::Matrix3Xd vertices;   ///< (3 x num_vertices) [m]
-  Eigen::Matrix3Xi triangles;  ///< (3 x num_triangles) vertex indices, counter-clockwise seen
-                               ///< from outside (the voxelizer repairs meshes that are not)
+  Eigen::Matrix3Xd vertices;    ///< (3 x num_vertices) [m]
+  Eigen::Matrix3Xi triangles;   ///< (3 x num_triangles) vertex indices, counter-clockwise seen
+                                ///< from outside (the voxelizer repairs meshes that are not)
   std::vector<MeshPart> parts;  ///< cover all triangles in order; empty means one unnamed part
 
   int num_vertices() const { return static_cast<int>(vertices.cols()); }

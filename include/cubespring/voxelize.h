@@ -30,7 +30,7 @@ struct VoxelizeOptions {
   CellRule rule = CellRule::kCentreInside;
   double min_covered_fraction = 0.5;  ///< kCoveredFraction: in (0, 1]
   int samples_per_axis = 3;           ///< kCoveredFraction: 1..8
-  bool drop_islands = false;  ///< keep only the largest face-connected piece of cells
+  bool drop_islands = false;          ///< keep only the largest face-connected piece of cells
   /// Refuse grids whose memory estimate exceeds this [bytes]; 0 means half the machine's memory.
   std::uint64_t max_memory_bytes = 0;
 };
@@ -48,10 +48,10 @@ struct CellConnectivity {
 struct VoxelPart {
   std::string name;
   std::string material_name;
-  int triangles = 0;           ///< after repair
-  double mesh_volume = 0.0;    ///< enclosed by the part's surface [m^3]
-  double voxel_volume = 0.0;   ///< cells whose inside test says this part, before the inner part wins [m^3]
-  int cells = 0;               ///< cells given this part (the inner part wins) after island removal
+  int triangles = 0;          ///< after repair
+  double mesh_volume = 0.0;   ///< enclosed by the part's surface [m^3]
+  double voxel_volume = 0.0;  ///< cells whose inside test says this part, before the inner part wins [m^3]
+  int cells = 0;              ///< cells given this part (the inner part wins) after island removal
   /// -1, or the part whose cells this part's surface encloses: parts sharing edges form one
   /// solid (pieces of a tool split by material), labelled by its first part, which carries
   /// the volumes and cells.
@@ -69,12 +69,12 @@ struct Voxelization {
   std::vector<VoxelPart> parts;
   SurfaceProblems surface;
   CellConnectivity connectivity;
-  double mesh_volume = 0.0;   ///< parts' volumes, less those of parts lying inside another [m^3]
-  double voxel_volume = 0.0;  ///< number of cells times the cell volume [m^3]
-  int nodes = 0;              ///< nodes of the lattice these cells make
-  int springs = 0;            ///< springs of that lattice (edges shared by cells count once)
-  int undecided_cells = 0;    ///< samples (cells, under the centre rule) the axis rays could not
-                              ///< settle, settled by the winding number
+  double mesh_volume = 0.0;                 ///< parts' volumes, less those of parts lying inside another [m^3]
+  double voxel_volume = 0.0;                ///< number of cells times the cell volume [m^3]
+  int nodes = 0;                            ///< nodes of the lattice these cells make
+  int springs = 0;                          ///< springs of that lattice (edges shared by cells count once)
+  int undecided_cells = 0;                  ///< samples (cells, under the centre rule) the axis rays could not
+                                            ///< settle, settled by the winding number
   std::uint64_t memory_estimate_bytes = 0;  ///< the simulated body these cells make (Model, State) [bytes]
   std::vector<std::string> warnings;        ///< problems that did not stop voxelizing
 

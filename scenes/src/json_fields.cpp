@@ -152,7 +152,8 @@ Status JsonFields::vector3(const std::string& key, Eigen::Vector3d& out) const {
   const bool three_numbers = value->is_array() && value->size() == 3 &&
                              std::all_of(value->begin(), value->end(), [](const json& v) { return v.is_number(); });
   if (!three_numbers) {
-    const std::string got = value->is_array() ? "an array of " + std::to_string(value->size()) + " values" : type_name(*value);
+    const std::string got =
+        value->is_array() ? "an array of " + std::to_string(value->size()) + " values" : type_name(*value);
     return error(key, "must be an array of 3 numbers [x, y, z], got " + got);
   }
   for (int i = 0; i < 3; ++i) out[i] = (*value)[static_cast<std::size_t>(i)].get<double>();
@@ -165,7 +166,8 @@ Status JsonFields::quaternion(const std::string& key, Eigen::Quaterniond& out) c
   const bool four_numbers = value->is_array() && value->size() == 4 &&
                             std::all_of(value->begin(), value->end(), [](const json& v) { return v.is_number(); });
   if (!four_numbers) {
-    const std::string got = value->is_array() ? "an array of " + std::to_string(value->size()) + " values" : type_name(*value);
+    const std::string got =
+        value->is_array() ? "an array of " + std::to_string(value->size()) + " values" : type_name(*value);
     return error(key, "must be a quaternion [w, x, y, z], got " + got);
   }
   Eigen::Quaterniond q((*value)[0].get<double>(), (*value)[1].get<double>(), (*value)[2].get<double>(),
@@ -190,7 +192,8 @@ Result<std::vector<JsonFields>> JsonFields::objects(const std::string& key) cons
     JsonFields element(*document_, source_, child_pointer(child_pointer(pointer_, key), index),
                        name_of(key) + "[" + index + "]");
     if (!(*value)[i].is_object()) {
-      return element.error_here("\"" + name_of(key) + "[" + index + "]\" must be an object, got " + type_name((*value)[i]));
+      return element.error_here("\"" + name_of(key) + "[" + index + "]\" must be an object, got " +
+                                type_name((*value)[i]));
     }
     elements.push_back(std::move(element));
   }

@@ -85,7 +85,8 @@ class LineRecorder {
     int line_number = 0;
     int column = 0;
     const std::size_t at = what.find("at line ");
-    if (at != std::string::npos && std::sscanf(what.c_str() + at, "at line %d, column %d", &line_number, &column) == 2) {
+    if (at != std::string::npos &&
+        std::sscanf(what.c_str() + at, "at line %d, column %d", &line_number, &column) == 2) {
       error_line_ = line_number;
     } else {
       error_line_ = line();

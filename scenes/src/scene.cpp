@@ -32,7 +32,9 @@ Status read_mesh_path(const JsonFields& fields, const std::string& key, const Sc
     if (Status status = fields.string(key, given); !status) return status;
     if (given.empty()) return fields.error(key, "must name a mesh file, got an empty string");
     const fs::path path(given);
-    out = (path.is_absolute() || context.base_dir.empty() ? path : fs::path(context.base_dir) / path).lexically_normal().string();
+    out = (path.is_absolute() || context.base_dir.empty() ? path : fs::path(context.base_dir) / path)
+              .lexically_normal()
+              .string();
   }
   std::error_code ignored;
   if (!fs::is_regular_file(out, ignored)) {
@@ -43,7 +45,9 @@ Status read_mesh_path(const JsonFields& fields, const std::string& key, const Sc
 }
 
 Status read_material(const JsonFields& fields, Material& material) {
-  if (Status s = fields.check_keys({"young_modulus", "poisson_ratio", "density", "mass_damping", "stiffness_damping"}); !s) return s;
+  if (Status s = fields.check_keys({"young_modulus", "poisson_ratio", "density", "mass_damping", "stiffness_damping"});
+      !s)
+    return s;
   if (Status s = fields.positive("young_modulus", material.young_modulus); !s) return s;
   if (Status s = fields.number("poisson_ratio", material.poisson_ratio); !s) return s;
   if (!(material.poisson_ratio > kMinPoissonRatio && material.poisson_ratio < kMaxPoissonRatio)) {
@@ -59,18 +63,20 @@ Status read_material(const JsonFields& fields, Material& material) {
 Status read_box(const JsonFields& fields, Box& box) {
   if (Status s = fields.check_keys({"lower", "upper"}); !s) return s;
   for (const char* key : {"lower", "upper"}) {
-    if (!fields.has(key)) return fields.error_here("\"" + fields.name_of(key) + "\" is missing: a box needs lower and upper corners [m]");
+    if (!fields.has(key))
+      return fields.error_here("\"" + fields.name_of(key) + "\" is missing: a box needs lower and upper corners [m]");
   }
   if (Status s = fields.vector3("lower", box.lower); !s) return s;
   if (Status s = fields.vector3("upper", box.upper); !s) return s;
-  if (!(box.lower.array() <= box.upper.array()).all()) return fields.error("upper", "must be >= \"lower\" in x, y and z");
+  if (!(box.lower.array() <= box.upper.array()).all())
+    return fields.error("upper", "must be >= \"lower\" in x, y and z");
   box.line = fields.line();
   return {};
 }
 
 Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSpec& organ) {
-  if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "law", "materials", "fixed_regions",
-                                    "friction", "face_contacts", "contact_offset"});
+  if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "law", "materials",
+                                    "fixed_regions", "friction", "face_contacts", "contact_offset"});
       !s) {
     return s;
   }
@@ -175,8 +181,8 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
   if (tool.capsule && !(tool.scale * tool.capsule->length <= kMaxToolSize)) {
     Result<JsonFields> capsule = fields.object("capsule");
     const std::string size = text(tool.scale * tool.capsule->length);
-    return capsule ? capsule->error("length", "times the scale is " + size + " m, more than a tool's " +
-                                                  text(kMaxToolSize) + " m")
+    return capsule ? capsule->error(
+                         "length", "times the scale is " + size + " m, more than a tool's " + text(kMaxToolSize) + " m")
                    : fields.error("scale", "makes the capsule " + size + " m long, more than a tool's " +
                                                text(kMaxToolSize) + " m");
   }
@@ -201,7 +207,8 @@ Status read_lights(const JsonFields& fields, RenderSpec& render) {
     Result<std::vector<JsonFields>> lights = fields.objects("lights");
     if (!lights) return lights.status();
     if (lights->size() > 8) {
-      return fields.error("lights", "has " + std::to_string(lights->size()) + " lights: at most 8 (OpenGL's fixed pipeline)");
+      return fields.error("lights",
+                          "has " + std::to_string(lights->size()) + " lights: at most 8 (OpenGL's fixed pipeline)");
     }
     render.lights.clear();
     for (const JsonFields& entry : *lights) {
@@ -221,7 +228,8 @@ Status read_lights(const JsonFields& fields, RenderSpec& render) {
 
 Status read_render(const JsonFields& fields, RenderSpec& render) {
   if (Status s = fields.check_keys({"width", "height", "supersampling", "camera", "lights", "ambient", "wireframe",
-                                     "colour_map", "colour_range", "strain_range"}); !s) {
+                                    "colour_map", "colour_range", "strain_range"});
+      !s) {
     return s;
   }
   if (Status s = fields.integer("width", render.width, 1, 8192); !s) return s;
@@ -240,7 +248,8 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
       got << render.camera.vertical_fov_degrees;
       return camera->error("fov", "must be below 180 degrees, got " + got.str());
     }
-    if (Status s = validate(render.camera); !s) return camera->error_here("\"" + fields.name_of("camera") + "\": " + s.message());
+    if (Status s = validate(render.camera); !s)
+      return camera->error_here("\"" + fields.name_of("camera") + "\": " + s.message());
   }
   if (Status s = read_lights(fields, render); !s) return s;
   if (Status s = fields.boolean("wireframe", render.wireframe); !s) return s;
@@ -259,7 +268,6 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
   return fields.positive("strain_range", render.strain_range);
 }
 
-
 // The run counts its steps and frames in int and lists the frames: a time step longer than the
 // story, or so short or a frame rate so high that the counts pass what it can hold, is refused
 // (it would give one frame of step 0 repeated, or overflow the counts).
@@ -273,16 +281,16 @@ Status check_counts(const JsonFields& fields, const Scene& scene) {
       return fields.error("duration", "of " + text(scene.duration) + " s is shorter than the default time step of " +
                                           step + " (give a \"time_step\")");
     }
-    return fields.error("time_step", "of " + step + " is longer than the scene's duration of " +
-                                         text(scene.duration) + " s");
+    return fields.error("time_step",
+                        "of " + step + " is longer than the scene's duration of " + text(scene.duration) + " s");
   }
   if (scene.duration / scene.time_step > kMaxSteps || scene.settle_time / scene.time_step > kMaxSteps) {
-    const std::string span = "the settle time and duration of " + text(scene.settle_time) + " s and " +
-                             text(scene.duration) + " s";
+    const std::string span =
+        "the settle time and duration of " + text(scene.settle_time) + " s and " + text(scene.duration) + " s";
     if (!step_given) {
-      return fields.error(scene.settle_time > scene.duration ? "settle_time" : "duration",
-                          "makes more than " + text(kMaxSteps) + " steps of the default time step of " + step +
-                              " (" + span + ")");
+      return fields.error(
+          scene.settle_time > scene.duration ? "settle_time" : "duration",
+          "makes more than " + text(kMaxSteps) + " steps of the default time step of " + step + " (" + span + ")");
     }
     return fields.error("time_step", "of " + step + " gives more than " + text(kMaxSteps) + " steps over " + span);
   }
@@ -352,7 +360,8 @@ Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& 
   }
   if (scene.duration <= 0.0) scene.duration = 1.0;
   if (Status s = fields.positive("duration", scene.duration); !s) return s;
-  if (fields.has("frames") && fields.has("frame_rate")) return fields.error("frames", "and \"frame_rate\" are both given: give one");
+  if (fields.has("frames") && fields.has("frame_rate"))
+    return fields.error("frames", "and \"frame_rate\" are both given: give one");
   if (Status s = fields.positive("frame_rate", scene.frame_rate); !s) return s;
   if (Status s = fields.integer("frames", scene.frames, 1, 1000000); !s) return s;
   if (Status s = check_counts(fields, scene); !s) return s;
@@ -386,7 +395,8 @@ Result<Scene> parse_scene(const std::string& text, const SceneContext& context) 
   if (!document) return document.status();
   Scene scene;
   scene.source = context.source;
-  scene.organ.mesh = context.data_dir.empty() ? std::string("liver.obj") : (fs::path(context.data_dir) / "liver.obj").string();
+  scene.organ.mesh =
+      context.data_dir.empty() ? std::string("liver.obj") : (fs::path(context.data_dir) / "liver.obj").string();
   // the default organ, the liver, from the front and above
   scene.render.camera.position = Eigen::Vector3d(0.06, -0.20, 0.21);
   scene.render.camera.target = Eigen::Vector3d(0.01, 0.0, 0.03);

@@ -7,14 +7,14 @@
 #include "cubespring/embedding.h"
 #include "cubespring/render/colour_map.h"
 #include "cubespring/render/wireframe.h"
-#include "cubespring/strain.h"
 #include "cubespring/scene/tool_motion.h"
+#include "cubespring/strain.h"
 
 namespace cubespring::scene {
 namespace {
 
-const Eigen::Vector3f kTissue(0.55f, 0.16f, 0.13f);   // liver red, for colour_map "none"
-const Eigen::Vector3f kSteel(0.62f, 0.64f, 0.67f);    // data/probe.mtl's grey
+const Eigen::Vector3f kTissue(0.55f, 0.16f, 0.13f);  // liver red, for colour_map "none"
+const Eigen::Vector3f kSteel(0.62f, 0.64f, 0.67f);   // data/probe.mtl's grey
 const Eigen::Vector3f kLattice(0.08f, 0.08f, 0.08f);
 
 }  // namespace

@@ -22,8 +22,8 @@ btVector3 to_bt(const Eigen::Vector3d& v) {
 
 btTransform to_bt(const Eigen::Isometry3d& pose) {
   const Eigen::Quaterniond q(pose.linear());
-  return btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()), static_cast<btScalar>(q.z()),
-                                  static_cast<btScalar>(q.w())),
+  return btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
+                                  static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
                      to_bt(Eigen::Vector3d(pose.translation())));
 }
 
@@ -46,7 +46,8 @@ Result<std::vector<Material>> part_materials(const Scene& scene, const Voxelizat
   std::map<std::string, bool> used;
   for (const VoxelPart& part : voxels.parts) {
     auto found = scene.organ.materials.find(part.material_name);
-    if (part.material_name.empty() || found == scene.organ.materials.end()) found = scene.organ.materials.find(part.name);
+    if (part.material_name.empty() || found == scene.organ.materials.end())
+      found = scene.organ.materials.find(part.name);
     if (found == scene.organ.materials.end()) {
       materials.push_back(default_tissue());
       summary.notes.push_back("part \"" + part.name + "\" (material \"" + part.material_name +
@@ -64,7 +65,8 @@ Result<std::vector<Material>> part_materials(const Scene& scene, const Voxelizat
     }
     const auto line = scene.organ.material_lines.find(name);
     return Status::error(where(scene, line == scene.organ.material_lines.end() ? 0 : line->second) + "\"" + name +
-                         "\" in \"organ.materials\" matches no part of " + scene.organ.mesh + " (its parts: " + parts + ")");
+                         "\" in \"organ.materials\" matches no part of " + scene.organ.mesh + " (its parts: " + parts +
+                         ")");
   }
   return materials;
 }
@@ -86,8 +88,8 @@ Result<std::unique_ptr<SceneWorld>> SceneWorld::create(const Scene& scene) {
   built->dispatcher_ = std::make_unique<btCollisionDispatcher>(built->configuration_.get());
   built->broadphase_ = std::make_unique<btDbvtBroadphase>();
   built->solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
-  built->world_ = std::make_unique<bullet::World>(built->dispatcher_.get(), built->broadphase_.get(), built->solver_.get(),
-                                                  built->configuration_.get());
+  built->world_ = std::make_unique<bullet::World>(built->dispatcher_.get(), built->broadphase_.get(),
+                                                  built->solver_.get(), built->configuration_.get());
   built->world_->setGravity(to_bt(scene.gravity));
   if (Status s = built->build_organ(scene); !s) return s;
   if (Status s = built->build_table(scene); !s) return s;
@@ -130,8 +132,8 @@ Status SceneWorld::build_organ(const Scene& scene) {
     const Box& box = spec.fixed_regions[i];
     if (Status s = organ_->constraints().fix_box(organ_->model(), box.lower, box.upper); !s) {
       std::ostringstream message;
-      message << where(scene, box.line) << "organ.fixed_regions[" << i << "] from (" << box.lower.transpose() << ") to ("
-              << box.upper.transpose() << ") m holds no node of the organ";
+      message << where(scene, box.line) << "organ.fixed_regions[" << i << "] from (" << box.lower.transpose()
+              << ") to (" << box.upper.transpose() << ") m holds no node of the organ";
       return Status::error(message.str());
     }
   }
@@ -176,12 +178,14 @@ Status SceneWorld::build_tools(const Scene& scene) {
       const double length = spec.capsule->length * spec.scale;
       if (spec.mesh.empty()) tool.mesh = capsule_mesh(radius, length);
       // Bullet's capsule is centred on its origin; the tool's frame has the tip there
-      tool.shape = std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius), static_cast<btScalar>(length - 2.0 * radius));
+      tool.shape = std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius),
+                                                     static_cast<btScalar>(length - 2.0 * radius));
       tool.shape_offset.translation() = Eigen::Vector3d(0, 0, 0.5 * length);
     } else {
       // contact sees the mesh's convex hull; a small margin, as the plugin ignores it (doc section 5)
       auto hull = std::make_unique<btConvexHullShape>();
-      for (int v = 0; v < tool.mesh.num_vertices(); ++v) hull->addPoint(to_bt(Eigen::Vector3d(tool.mesh.vertices.col(v))), false);
+      for (int v = 0; v < tool.mesh.num_vertices(); ++v)
+        hull->addPoint(to_bt(Eigen::Vector3d(tool.mesh.vertices.col(v))), false);
       hull->recalcLocalAabb();
       hull->setMargin(0.0005f);
       tool.shape = std::move(hull);
@@ -203,7 +207,8 @@ void SceneWorld::place_tools(double t) {
 
 Status SceneWorld::step(double dt) {
   world_->stepSimulation(static_cast<btScalar>(dt), 1, static_cast<btScalar>(dt));
-  if (!world_->getSoftBodyError().empty()) return Status::error("the organ went unstable: " + world_->getSoftBodyError());
+  if (!world_->getSoftBodyError().empty())
+    return Status::error("the organ went unstable: " + world_->getSoftBodyError());
   return {};
 }
 

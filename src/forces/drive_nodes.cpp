@@ -7,8 +7,7 @@
 
 namespace cubespring {
 
-bool drive_nodes(const Constraints& constraints, double dt, const State& start, State& end, int begin,
-                 int end_node) {
+bool drive_nodes(const Constraints& constraints, double dt, const State& start, State& end, int begin, int end_node) {
   bool finite = true;
   const std::uint8_t* driven = constraints.driven_flags();
   constexpr int kWord = sizeof(std::uint64_t);

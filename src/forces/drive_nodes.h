@@ -35,7 +35,6 @@ inline bool drive_node(const Constraints& constraints, double dt, const State& s
 
 /// drive_node() for the nodes [begin, end_node), skipping free nodes a word of flags at a time.
 /// Returns false if a driven velocity is not finite.
-bool drive_nodes(const Constraints& constraints, double dt, const State& start, State& end, int begin,
-                 int end_node);
+bool drive_nodes(const Constraints& constraints, double dt, const State& start, State& end, int begin, int end_node);
 
 }  // namespace cubespring

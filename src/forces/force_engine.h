@@ -27,8 +27,8 @@ struct ForceEngine {
   std::shared_ptr<const GridLayout> grid;
 
   bool made_for(const Model& model) const {
-    return model_revision == model.revision && num_nodes == model.num_nodes() &&
-           num_springs == model.num_springs() && num_cells == model.num_cells();
+    return model_revision == model.revision && num_nodes == model.num_nodes() && num_springs == model.num_springs() &&
+           num_cells == model.num_cells();
   }
 };
 

@@ -41,9 +41,8 @@ struct KickDrift {
 /// (driven nodes' before they are driven), NaN or infinity if a velocity or a new position of
 /// the kick or a driven velocity is not finite. The states and forces are the same as from
 /// compute_forces() and separate sweeps.
-double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads,
-                               const ForceOptions& options, ForceWorkspace& workspace, Eigen::Matrix3Xd& forces,
-                               const KickDrift& kick);
+double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads, const ForceOptions& options,
+                               ForceWorkspace& workspace, Eigen::Matrix3Xd& forces, const KickDrift& kick);
 
 /// The speed bookkeeping of the kick-drift: the larger squared speed, NaN once any is NaN.
 inline double faster(double speed_sq, double fastest_sq) {

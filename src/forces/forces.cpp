@@ -96,7 +96,8 @@ void measure_springs(const Model& model, const Eigen::Matrix3Xd& x, const Eigen:
     const Tile inverse = length.inverse();
     TileMap(ws.spring_length.data() + tile) = length;
     TileMap(ws.spring_inverse_length.data() + tile) = inverse;
-    Tile own = ConstTileMap(model.spring_stiffness.data() + tile) * (length - ConstTileMap(model.spring_rest_length.data() + tile));
+    Tile own = ConstTileMap(model.spring_stiffness.data() + tile) *
+               (length - ConstTileMap(model.spring_rest_length.data() + tile));
     if constexpr (kWithRate) {
       const Tile rate = TileMap(ws.spring_rate.data() + tile) * inverse;
       TileMap(ws.spring_rate.data() + tile) = rate;
@@ -177,8 +178,10 @@ void correction_tension(const Model& model, bool with_rate, int c, ForceWorkspac
   Eigen::Array3d length_sum, rate_sum = Eigen::Array3d::Zero();
   for (int axis = 0; axis < 3; ++axis) {
     const int* e = edges.data() + axis * kEdgesPerAxis;
-    length_sum[axis] = (ws.spring_length[e[0]] + ws.spring_length[e[1]]) + (ws.spring_length[e[2]] + ws.spring_length[e[3]]);
-    if (with_rate) rate_sum[axis] = (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
+    length_sum[axis] =
+        (ws.spring_length[e[0]] + ws.spring_length[e[1]]) + (ws.spring_length[e[2]] + ws.spring_length[e[3]]);
+    if (with_rate)
+      rate_sum[axis] = (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
   }
   Eigen::Vector3d strain = (length_sum * inverse_edge_sum - 1.0).matrix();
   if (with_rate) {
@@ -217,8 +220,8 @@ int neo_hookean_cell_pass(const Model& model, int begin, int end, ForceWorkspace
     ws.cell_crushed[c] = 0;
     if (target == nullptr) continue;
     MeanEdgeGradient gradient;
-    (void)neo_hookean_cell_energy(model.law_constants[model.cell_material[c]], frame_from_diagonals(model, ws, signs, c),
-                                  &gradient);
+    (void)neo_hookean_cell_energy(model.law_constants[model.cell_material[c]],
+                                  frame_from_diagonals(model, ws, signs, c), &gradient);
     add_corner_forces(model, c, corner_forces(gradient), *target);
     if (model.cell_twist_stiffness[c] != 0.0) add_twist_forces(model, c, ws, *target);
   }
@@ -250,8 +253,9 @@ inline Eigen::Vector3d spring_force(const Model& model, const ForceWorkspace& ws
 // The first cell whose lowest corner (corner 0) is node n or after it: cells are in grid order,
 // so their corner 0 nodes rise with the cell index.
 inline int first_cell_from_node(const Model& model, int n) {
-  const auto after = std::partition_point(model.cell_nodes.begin(), model.cell_nodes.end(),
-                                          [n](const std::array<int, kCornersPerCell>& corners) { return corners[0] < n; });
+  const auto after =
+      std::partition_point(model.cell_nodes.begin(), model.cell_nodes.end(),
+                           [n](const std::array<int, kCornersPerCell>& corners) { return corners[0] < n; });
   return static_cast<int>(after - model.cell_nodes.begin());
 }
 
@@ -384,7 +388,7 @@ double run_passes(const Model& model, const State& state, const ForceOptions& op
   const int threads = std::max(1, std::min(options.threads, blocks));
   run_shares(threads, [&](int share, int shares, const auto& barrier) {
     run_block_passes<kWithCornerForces>(model, state, with_rate, blocks * share / shares, blocks * (share + 1) / shares,
-                                 share == 0, barrier, ws, forces, finish);
+                                        share == 0, barrier, ws, forces, finish);
   });
   double fastest_sq = 0.0;
   for (int b = 0; b < blocks; ++b) fastest_sq = faster(ws.block_fastest[b], fastest_sq);
@@ -399,7 +403,10 @@ struct NodeLoads {
   bool with_mass_damping, with_nodal;
 
   NodeLoads(const Model& m, const State& s, const Loads& l, const ForceOptions& options)
-      : model(m), state(s), loads(l), with_mass_damping(options.damping && m.has_mass_damping),
+      : model(m),
+        state(s),
+        loads(l),
+        with_mass_damping(options.damping && m.has_mass_damping),
         with_nodal(l.nodal_forces.cols() == m.num_nodes()) {}
 
   // (gravity added even when zero: the grid's kick, grid_kick.cpp, vectorises without a branch)
@@ -472,9 +479,8 @@ double grid_passes(const Model& model, const State& state, const ForceOptions& o
     ws.grid_arrays_layout = ws.engine->grid;
   }
   const bool with_rate = options.damping && model.has_stiffness_damping;
-  const GridForces grid =
-      grid_spring_forces(*ws.engine->grid, state, with_rate, options.threads, ws.grid_arrays, ws.grid_split, forces,
-                         kick);
+  const GridForces grid = grid_spring_forces(*ws.engine->grid, state, with_rate, options.threads, ws.grid_arrays,
+                                             ws.grid_split, forces, kick);
   if (kick != nullptr) {
     if (grid.crushed == 0) return grid.fastest_sq;
     return redo_crushed_corners(model, state, ws, forces, finish, kick->kick);
@@ -509,7 +515,7 @@ double force_sweep(const Model& model, const State& state, const ForceOptions& o
   }
   const bool corner_forces = model.has_twist || model.cell_law == CellLaw::kNeoHookean;
   return corner_forces ? run_passes<true>(model, state, options, ws, forces, finish)
-                         : run_passes<false>(model, state, options, ws, forces, finish);
+                       : run_passes<false>(model, state, options, ws, forces, finish);
 }
 
 }  // namespace
@@ -538,8 +544,8 @@ void ForceWorkspace::resize(const Model& model) {
   block_fastest.resize(blocks);
 }
 
-void compute_forces(const Model& model, const State& state, const Loads& loads,
-                    const ForceOptions& options, ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
+void compute_forces(const Model& model, const State& state, const Loads& loads, const ForceOptions& options,
+                    ForceWorkspace& ws, Eigen::Matrix3Xd& forces) {
   std::string error = node_columns_error(model, state.positions, "state.positions");
   if (error.empty()) error = node_columns_error(model, state.velocities, "state.velocities", !options.damping);
   if (error.empty()) error = node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true);
@@ -552,9 +558,8 @@ void compute_forces(const Model& model, const State& state, const Loads& loads,
   });
 }
 
-double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads,
-                               const ForceOptions& options, ForceWorkspace& ws, Eigen::Matrix3Xd& forces,
-                               const KickDrift& kick) {
+double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads, const ForceOptions& options,
+                               ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const KickDrift& kick) {
   const NodeLoads node_loads(model, state, loads, options);
   const State& from = *kick.from;
   State& to = *kick.to;
@@ -566,8 +571,7 @@ double compute_forces_and_kick(const Model& model, const State& state, const Loa
         const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
         to.velocities.col(n) = v;
         to.positions.col(n) = from.positions.col(n) + kick.drift * v;
-        double speed_sq =
-            to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+        double speed_sq = to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
         if (kick.driven != nullptr && !drive_node(*kick.driven, kick.step_of_drive(), kick.start_of_drive(), to, n)) {
           speed_sq = std::numeric_limits<double>::quiet_NaN();
         }
@@ -609,8 +613,8 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
         const auto& ends = model.spring_nodes[model.cell_edges[c][e]];
         edges[e] = x.col(ends[1]) - x.col(ends[0]);
       }
-      energy += twist_energy(edges, model.cell_size.x(), model.cell_twist_stiffness[c],
-                             [](int, const Eigen::Vector3d&) {});
+      energy +=
+          twist_energy(edges, model.cell_size.x(), model.cell_twist_stiffness[c], [](int, const Eigen::Vector3d&) {});
     }
     const double ratio = cell_frame(model, x, c).volume() / rest_volume;
     if (!neo_hookean && ratio < kCrushedVolumeFraction) {

@@ -11,8 +11,8 @@ std::string node_columns_error(const Model& model, const Eigen::Matrix3Xd& value
                                bool may_be_empty) {
   if (values.cols() == model.num_nodes() || (may_be_empty && values.size() == 0)) return {};
   std::ostringstream message;
-  message << name << " has " << values.cols() << " columns; the body has " << model.num_nodes()
-          << " nodes" << (may_be_empty ? " (or leave it empty)" : "");
+  message << name << " has " << values.cols() << " columns; the body has " << model.num_nodes() << " nodes"
+          << (may_be_empty ? " (or leave it empty)" : "");
   return message.str();
 }
 

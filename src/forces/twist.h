@@ -50,7 +50,8 @@ struct FaceMeans {
   Eigen::Vector3d a, c;
 };
 inline FaceMeans face_means(const TwistFace& face, const std::array<Eigen::Vector3d, kEdgesPerCell>& edges) {
-  return {0.5 * (edges[face.a_edges[0]] + edges[face.a_edges[1]]), 0.5 * (edges[face.c_edges[0]] + edges[face.c_edges[1]])};
+  return {0.5 * (edges[face.a_edges[0]] + edges[face.a_edges[1]]),
+          0.5 * (edges[face.c_edges[0]] + edges[face.c_edges[1]])};
 }
 
 /// Twist energy [J] of a cubic cell of side h [m] and stiffness k [Pa] from its 12 edge vectors
@@ -110,8 +111,8 @@ inline void add_twist_face_forces(const std::array<Eigen::Vector3d, kEdgesPerCel
 /// means a, c and coefficient q, the a-edges' lower corners get q c and their upper ones -q c,
 /// the c-edges' q a and -q a, so its corner 0 gets q (a + c), the opposite corner -q (a + c), the
 /// corner one step along a q (a - c), and the one a step along c -q (a - c).
-inline std::array<Eigen::Vector3d, kCornersPerCell> twist_corner_forces(const std::array<Eigen::Vector3d, kEdgesPerCell>& edges,
-                                                                        double h, double k) {
+inline std::array<Eigen::Vector3d, kCornersPerCell> twist_corner_forces(
+    const std::array<Eigen::Vector3d, kEdgesPerCell>& edges, double h, double k) {
   std::array<Eigen::Vector3d, kCornersPerCell> corner;
   corner.fill(Eigen::Vector3d::Zero());
   add_twist_face_forces<0>(edges, h, k, corner);

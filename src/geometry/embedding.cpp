@@ -99,8 +99,7 @@ Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
   embedding.vertex_local.resize(3, visual.num_vertices());
   for (int v = 0; v < visual.num_vertices(); ++v) {
     // position in grid units: cell (i, j, k) spans [i, i + 1) x [j, j + 1) x [k, k + 1)
-    const Eigen::Vector3d local =
-        (visual.vertices.col(v) - model.origin).cwiseQuotient(model.cell_size);
+    const Eigen::Vector3d local = (visual.vertices.col(v) - model.origin).cwiseQuotient(model.cell_size);
     const Eigen::Vector3d home_cell = local.array().floor();
     const Eigen::Vector3d beyond = (box.low.cast<double>() - home_cell).cwiseMax(home_cell - box.high.cast<double>());
     if (!(beyond.maxCoeff() <= longest)) {  // NaN too
@@ -127,7 +126,8 @@ void embedded_positions(const Model& model, const Embedding& embedding, const Ei
                         Eigen::Matrix3Xd& vertices) {
   vertices.resize(3, embedding.num_vertices());
   for (int v = 0; v < embedding.num_vertices(); ++v) {
-    const auto& corners = model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
+    const auto& corners =
+        model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
     const Eigen::Vector3d u = embedding.vertex_local.col(v);
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     for (int corner = 0; corner < kCornersPerCell; ++corner) {
@@ -141,7 +141,8 @@ void embedded_values(const Model& model, const Embedding& embedding, const Eigen
                      Eigen::VectorXd& vertex_values) {
   vertex_values.resize(embedding.num_vertices());
   for (int v = 0; v < embedding.num_vertices(); ++v) {
-    const auto& corners = model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
+    const auto& corners =
+        model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
     const Eigen::Vector3d u = embedding.vertex_local.col(v);
     double value = 0.0;
     for (int corner = 0; corner < kCornersPerCell; ++corner) {

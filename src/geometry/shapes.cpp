@@ -12,13 +12,15 @@ namespace cubespring {
 
 namespace {
 
-TriangleMesh from_lists(const std::vector<Eigen::Vector3d>& vertices, const std::vector<std::array<int, 3>>& triangles) {
+TriangleMesh from_lists(const std::vector<Eigen::Vector3d>& vertices,
+                        const std::vector<std::array<int, 3>>& triangles) {
   TriangleMesh mesh;
   mesh.vertices.resize(3, static_cast<Eigen::Index>(vertices.size()));
   for (std::size_t v = 0; v < vertices.size(); ++v) mesh.vertices.col(static_cast<Eigen::Index>(v)) = vertices[v];
   mesh.triangles.resize(3, static_cast<Eigen::Index>(triangles.size()));
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    for (int c = 0; c < 3; ++c) mesh.triangles(c, static_cast<Eigen::Index>(t)) = triangles[t][static_cast<std::size_t>(c)];
+    for (int c = 0; c < 3; ++c)
+      mesh.triangles(c, static_cast<Eigen::Index>(t)) = triangles[t][static_cast<std::size_t>(c)];
   }
   mesh.parts = {MeshPart{"", "", 0, static_cast<int>(triangles.size())}};
   return mesh;
@@ -68,7 +70,8 @@ TriangleMesh torus_mesh(double major_radius, double minor_radius, int around, in
     for (int j = 0; j < tube; ++j) {
       const double theta = 2.0 * M_PI * j / tube;
       const double ring = major_radius + minor_radius * std::cos(theta);
-      vertices.push_back(centre + Eigen::Vector3d(ring * std::cos(phi), ring * std::sin(phi), minor_radius * std::sin(theta)));
+      vertices.push_back(centre +
+                         Eigen::Vector3d(ring * std::cos(phi), ring * std::sin(phi), minor_radius * std::sin(theta)));
     }
   }
   const auto at = [&](int i, int j) { return (i % around) * tube + (j % tube); };

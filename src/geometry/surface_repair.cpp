@@ -33,8 +33,8 @@ Eigen::Vector3d doubled_area_vector(const TriangleMesh& mesh, const Triangle& tr
 // The triangles of one solid that take part in orientation, in file order.
 struct SolidTriangles {
   std::vector<Triangle> triangles;
-  std::vector<int> part;      // the part each comes from
-  std::vector<double> area;   // |doubled area vector|: each triangle's weight in its component's vote
+  std::vector<int> part;     // the part each comes from
+  std::vector<double> area;  // |doubled area vector|: each triangle's weight in its component's vote
 };
 
 // The solid's triangles without the degenerate ones (two corners on one vertex, or no area),
@@ -489,7 +489,8 @@ RepairedSurface repair_surface(const TriangleMesh& mesh) {
   RepairedSurface repaired;
   repaired.mesh.vertices = mesh.vertices;
   repaired.part_solid = solids_of_parts(mesh, parts);
-  const int solid_count = parts.empty() ? 0 : *std::max_element(repaired.part_solid.begin(), repaired.part_solid.end()) + 1;
+  const int solid_count =
+      parts.empty() ? 0 : *std::max_element(repaired.part_solid.begin(), repaired.part_solid.end()) + 1;
   repaired.solid_parts.assign(static_cast<std::size_t>(solid_count), {});
   for (std::size_t p = 0; p < parts.size(); ++p) {
     repaired.solid_parts[static_cast<std::size_t>(repaired.part_solid[p])].push_back(static_cast<int>(p));

@@ -90,8 +90,8 @@ Status validate(const TriangleMesh& mesh, const std::string& source) {
   for (int v = 0; v < mesh.num_vertices(); ++v) {
     if (!mesh.vertices.col(v).allFinite()) {
       std::ostringstream out;
-      out << "vertex " << v << " has a coordinate that is not a finite number ("
-          << mesh.vertices(0, v) << ", " << mesh.vertices(1, v) << ", " << mesh.vertices(2, v) << ")";
+      out << "vertex " << v << " has a coordinate that is not a finite number (" << mesh.vertices(0, v) << ", "
+          << mesh.vertices(1, v) << ", " << mesh.vertices(2, v) << ")";
       return Status::error(prefixed(source, out.str()));
     }
   }
@@ -100,8 +100,8 @@ Status validate(const TriangleMesh& mesh, const std::string& source) {
       const int v = mesh.triangles(corner, t);
       if (v < 0 || v >= mesh.num_vertices()) {
         std::ostringstream out;
-        out << "triangle " << t << " refers to vertex " << v << ", but the mesh has "
-            << mesh.num_vertices() << " vertices (expected 0.." << mesh.num_vertices() - 1 << ")";
+        out << "triangle " << t << " refers to vertex " << v << ", but the mesh has " << mesh.num_vertices()
+            << " vertices (expected 0.." << mesh.num_vertices() - 1 << ")";
         return Status::error(prefixed(source, out.str()));
       }
     }
@@ -111,8 +111,8 @@ Status validate(const TriangleMesh& mesh, const std::string& source) {
     const MeshPart& part = mesh.parts[p];
     if (part.first_triangle != next_triangle || part.triangle_count < 0) {
       std::ostringstream out;
-      out << "part " << p << " ('" << part.name << "') covers triangles " << part.first_triangle
-          << " + " << part.triangle_count << "; expected to start at " << next_triangle;
+      out << "part " << p << " ('" << part.name << "') covers triangles " << part.first_triangle << " + "
+          << part.triangle_count << "; expected to start at " << next_triangle;
       return Status::error(prefixed(source, out.str()));
     }
     next_triangle += part.triangle_count;

@@ -16,7 +16,7 @@
 namespace cubespring {
 
 struct ChildLimits {
-  double seconds = 10.0;          ///< wall time the reader may take [s]
+  double seconds = 10.0;           ///< wall time the reader may take [s]
   std::uint64_t memory_bytes = 0;  ///< address space it may take [bytes]; 0: no limit
 };
 

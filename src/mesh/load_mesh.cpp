@@ -12,13 +12,13 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Core>
-#include <Eigen/LU>  // determinant
-#include <assimp/Importer.hpp>
 #include <assimp/config.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <Eigen/Core>
+#include <Eigen/LU>  // determinant
+#include <assimp/Importer.hpp>
 
 #include "child_reader.h"
 #include "cubespring/voxelize.h"  // default_memory_limit
@@ -35,9 +35,7 @@ std::string format(double value) {
   return out.str();
 }
 
-Status file_error(const std::string& path, const std::string& problem) {
-  return Status::error(path + ": " + problem);
-}
+Status file_error(const std::string& path, const std::string& problem) { return Status::error(path + ": " + problem); }
 
 // assimp's own message, cut short: its ASCII STL reader quotes the whole rest of the file after a
 // bad number (a 700 kB message for one bad digit)
@@ -45,7 +43,8 @@ std::string reader_message(const char* message) {
   constexpr std::size_t kShown = 200;
   const std::string text(message);
   if (text.size() <= kShown + 40) return text;
-  return text.substr(0, kShown) + "... (" + std::to_string(text.size() - kShown) + " more characters of assimp's message)";
+  return text.substr(0, kShown) + "... (" + std::to_string(text.size() - kShown) +
+         " more characters of assimp's message)";
 }
 
 // assimp reports a missing file only as "Unable to open file"; checking first gives one clear
@@ -129,17 +128,13 @@ struct MeshBuilder {
 
 // Appends one (node, mesh) reference as a part. `transform` is the node's accumulated
 // transform, `scale` the file unit in metres.
-Status append_part(const aiScene& scene, const aiNode& node, const aiMesh& mesh,
-                   const Eigen::Matrix4d& transform, double scale, const std::string& path,
-                   MeshBuilder& out) {
+Status append_part(const aiScene& scene, const aiNode& node, const aiMesh& mesh, const Eigen::Matrix4d& transform,
+                   double scale, const std::string& path, MeshBuilder& out) {
   const std::string name = mesh.mName.length > 0 ? mesh.mName.C_Str() : node.mName.C_Str();
   const std::size_t first_vertex = out.vertices.size();
-  if (first_vertex + mesh.mNumVertices >
-          static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
-      out.triangles.size() + mesh.mNumFaces >
-          static_cast<std::size_t>(std::numeric_limits<int>::max())) {
-    return file_error(path,
-                      "has more vertices or triangles than a TriangleMesh can index (2^31 - 1)");
+  if (first_vertex + mesh.mNumVertices > static_cast<std::size_t>(std::numeric_limits<int>::max()) ||
+      out.triangles.size() + mesh.mNumFaces > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    return file_error(path, "has more vertices or triangles than a TriangleMesh can index (2^31 - 1)");
   }
   const Eigen::Matrix3d linear = transform.topLeftCorner<3, 3>();
   const Eigen::Vector3d translation = transform.topRightCorner<3, 1>();
@@ -151,8 +146,7 @@ Status append_part(const aiScene& scene, const aiNode& node, const aiMesh& mesh,
     // a NaN apart from every other vertex
     if (!point.allFinite()) {
       std::ostringstream message;
-      message << "part '" << name << "': vertex " << v << " is (" << p.x << ", " << p.y << ", "
-              << p.z << ")";
+      message << "part '" << name << "': vertex " << v << " is (" << p.x << ", " << p.y << ", " << p.z << ")";
       if (file_point.allFinite()) message << " in the file, but overflows with transform and scale";
       message << ": coordinates must be finite numbers";
       return file_error(path, message.str());
@@ -170,8 +164,8 @@ Status append_part(const aiScene& scene, const aiNode& node, const aiMesh& mesh,
       const unsigned index = face.mIndices[corner];
       if (index >= mesh.mNumVertices) {
         std::ostringstream message;
-        message << "part '" << name << "': face " << f << " refers to vertex " << index
-                << ", but the mesh has " << mesh.mNumVertices << " vertices";
+        message << "part '" << name << "': face " << f << " refers to vertex " << index << ", but the mesh has "
+                << mesh.mNumVertices << " vertices";
         return file_error(path, message.str());
       }
       triangle[corner] = static_cast<int>(first_vertex + index);
@@ -199,8 +193,8 @@ Status append_scene(const aiScene& scene, double scale, const std::string& path,
     const Eigen::Matrix4d transform = visit.parent_transform * to_eigen(node.mTransformation);
     for (unsigned i = 0; i < node.mNumMeshes; ++i) {
       if (node.mMeshes[i] >= scene.mNumMeshes) {
-        return file_error(path, "node '" + std::string(node.mName.C_Str()) +
-                                    "' refers to a mesh the file does not have");
+        return file_error(path,
+                          "node '" + std::string(node.mName.C_Str()) + "' refers to a mesh the file does not have");
       }
       const aiMesh& mesh = *scene.mMeshes[node.mMeshes[i]];
       if (count_triangles(mesh) == 0) continue;  // points or lines, split off by SortByPType
@@ -230,10 +224,9 @@ Result<TriangleMesh> read_with_assimp(const std::string& path, const LoadOptions
 
 Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   if (!std::isfinite(options.scale) || options.scale <= 0.0) {
-    return file_error(path,
-                      "scale = " + format(options.scale) +
-                          ": LoadOptions::scale [m per file unit] must be a finite number > 0 "
-                          "(0.001 for a file in millimetres, 0.01 for centimetres)");
+    return file_error(path, "scale = " + format(options.scale) +
+                                ": LoadOptions::scale [m per file unit] must be a finite number > 0 "
+                                "(0.001 for a file in millimetres, 0.01 for centimetres)");
   }
   if (!std::isfinite(options.reader_seconds) || options.reader_seconds < 0.0) {
     return file_error(path, "reader_seconds = " + format(options.reader_seconds) +
@@ -280,11 +273,9 @@ Result<TriangleMesh> read_with_assimp(const std::string& path, const LoadOptions
   if (count_primitives(*scene).polygons == 0) return no_triangles_error(path, *scene);
   // Validation first (assimp runs it before the other steps): it catches faces that refer to
   // missing vertices in formats whose importers do not check (PLY).
-  scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate |
-                                       aiProcess_SortByPType);
+  scene = importer.ApplyPostProcessing(aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType);
   if (scene == nullptr || scene->mRootNode == nullptr) {
-    return file_error(path,
-                      "assimp rejects its content: " + reader_message(importer.GetErrorString()));
+    return file_error(path, "assimp rejects its content: " + reader_message(importer.GetErrorString()));
   }
 
   MeshBuilder built;

@@ -7,13 +7,13 @@
 #include <cctype>
 #include <fstream>
 #include <memory>
-#include <sstream>
 #include <optional>
+#include <sstream>
 #include <string_view>
 
 #include <assimp/BaseImporter.h>
-#include <assimp/Importer.hpp>
 #include <assimp/importerdesc.h>
+#include <assimp/Importer.hpp>
 
 #include "file_extension.h"
 
@@ -90,9 +90,8 @@ void keep_only_readers_of(Assimp::Importer& importer, MeshFormat format) {
   const std::string wanted(extension->extension.substr(1));  // without its dot, as assimp lists it
   for (std::size_t index = importer.GetImporterCount(); index-- > 0;) {
     const aiImporterDesc* description = importer.GetImporterInfo(index);
-    std::istringstream listed(description != nullptr && description->mFileExtensions != nullptr
-                                  ? description->mFileExtensions
-                                  : "");
+    std::istringstream listed(
+        description != nullptr && description->mFileExtensions != nullptr ? description->mFileExtensions : "");
     bool reads_it = false;
     for (std::string word; listed >> word;) reads_it = reads_it || word == wanted;
     if (reads_it) continue;

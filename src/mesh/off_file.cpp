@@ -46,7 +46,9 @@ class OffText {
       skip_spaces_and_line_ends();
     }
   }
-  bool starts_with(const char* word) const { return text_.compare(pos_, std::char_traits<char>::length(word), word) == 0; }
+  bool starts_with(const char* word) const {
+    return text_.compare(pos_, std::char_traits<char>::length(word), word) == 0;
+  }
   void advance(std::size_t count) {
     for (std::size_t i = 0; i < count; ++i) step();
   }
@@ -166,11 +168,11 @@ Status check_off_file(const std::string& path) {
       words.skip_spaces();
       const std::uint32_t index = words.number(digits);
       if (digits == 0 || index >= vertices) {
-        return off_error(path, line_number,
-                         "face " + std::to_string(face) + ": corner " + std::to_string(k) +
-                             (digits == 0 ? std::string(" is missing or not a number")
-                                          : " is vertex " + std::to_string(index)) +
-                             ": expected a vertex index below " + std::to_string(vertices));
+        return off_error(
+            path, line_number,
+            "face " + std::to_string(face) + ": corner " + std::to_string(k) +
+                (digits == 0 ? std::string(" is missing or not a number") : " is vertex " + std::to_string(index)) +
+                ": expected a vertex index below " + std::to_string(vertices));
       }
     }
   }

@@ -20,10 +20,10 @@ namespace {
 
 // Bytes of each scalar type in a binary PLY file (both spellings: the original and PLY 1.0's).
 const std::map<std::string, std::uint64_t>& scalar_sizes() {
-  static const std::map<std::string, std::uint64_t> sizes{
-      {"char", 1},   {"uchar", 1},  {"int8", 1},    {"uint8", 1},   {"short", 2},   {"ushort", 2},
-      {"int16", 2},  {"uint16", 2}, {"int", 4},     {"uint", 4},    {"int32", 4},   {"uint32", 4},
-      {"float", 4},  {"float32", 4}, {"double", 8}, {"float64", 8}};
+  static const std::map<std::string, std::uint64_t> sizes{{"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},
+                                                          {"short", 2}, {"ushort", 2},  {"int16", 2},  {"uint16", 2},
+                                                          {"int", 4},   {"uint", 4},    {"int32", 4},  {"uint32", 4},
+                                                          {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
   return sizes;
 }
 
@@ -46,7 +46,8 @@ struct Element {
 std::uint64_t read_count(const std::string& body, std::uint64_t at, std::uint64_t size, bool big_endian) {
   std::uint64_t value = 0;
   for (std::uint64_t i = 0; i < size; ++i) {
-    const std::uint64_t byte = static_cast<unsigned char>(body[static_cast<std::size_t>(at + (big_endian ? i : size - 1 - i))]);
+    const std::uint64_t byte =
+        static_cast<unsigned char>(body[static_cast<std::size_t>(at + (big_endian ? i : size - 1 - i))]);
     value = (value << 8) | byte;
   }
   return value;
@@ -72,7 +73,8 @@ long first_short_element(const std::vector<Element>& elements, const std::string
         std::string word;
         if (!(words >> word)) return static_cast<long>(e);
         if (!property.list) continue;
-        const bool whole = !word.empty() && word.size() <= 9 && word.find_first_not_of("0123456789") == std::string::npos;
+        const bool whole =
+            !word.empty() && word.size() <= 9 && word.find_first_not_of("0123456789") == std::string::npos;
         if (!whole) return static_cast<long>(e);
         for (std::uint64_t i = std::stoull(word); i > 0; --i) {
           if (!(words >> word)) return static_cast<long>(e);
@@ -131,7 +133,8 @@ Status check_ply_file(const std::string& path) {
     if (end == std::string::npos) {
       std::ostringstream out;
       out << path << ": PLY header has no 'end_header' line in its first " << head.size() << " bytes";
-      if (file_size > head.size()) out << " (of " << file_size << "; a header may take at most " << kPlyHeaderLimit << ")";
+      if (file_size > head.size())
+        out << " (of " << file_size << "; a header may take at most " << kPlyHeaderLimit << ")";
       out << ": the file is cut short or not a PLY file";
       return Status::error(out.str());
     }
@@ -184,8 +187,9 @@ Status check_ply_file(const std::string& path) {
         return header_error(path, line_number, "a second 'format' line, or one after an element");
       }
       if ((kind != "ascii" && kind != "binary_little_endian" && kind != "binary_big_endian") || version != "1.0") {
-        return header_error(path, line_number,
-                            "'" + shown(line) + "': expected 'format ascii 1.0' (or binary_little_endian, binary_big_endian)");
+        return header_error(
+            path, line_number,
+            "'" + shown(line) + "': expected 'format ascii 1.0' (or binary_little_endian, binary_big_endian)");
       }
       binary = kind != "ascii";
       big_endian = kind == "binary_big_endian";
@@ -197,7 +201,8 @@ Status check_ply_file(const std::string& path) {
       std::string count;
       words >> element.name >> count;
       element.line = line_number;
-      const bool whole = !count.empty() && count.size() <= 19 && count.find_first_not_of("0123456789") == std::string::npos;
+      const bool whole =
+          !count.empty() && count.size() <= 19 && count.find_first_not_of("0123456789") == std::string::npos;
       if (element.name.empty() || !whole) {
         return header_error(path, line_number,
                             "'" + shown(line) + "': expected 'element NAME COUNT', COUNT a whole number");
@@ -222,8 +227,9 @@ Status check_ply_file(const std::string& path) {
       const auto size = scalar_sizes().find(type);
       if (size == scalar_sizes().end() || scalar_sizes().count(item_type) == 0 || name.empty()) {
         return header_error(path, line_number,
-                            "'" + shown(line) + "': expected 'property TYPE NAME' or 'property list TYPE TYPE NAME', TYPE one "
-                            "of char, uchar, short, ushort, int, uint, float, double (or int8 .. float64)");
+                            "'" + shown(line) +
+                                "': expected 'property TYPE NAME' or 'property list TYPE TYPE NAME', TYPE one "
+                                "of char, uchar, short, ushort, int, uint, float, double (or int8 .. float64)");
       }
       elements.back().binary_bytes += size->second;
       ++elements.back().properties;

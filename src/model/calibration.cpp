@@ -25,12 +25,10 @@ SpringSet baudet_springs(const Material& material, const Eigen::Vector3d& size) 
   const double diagonal_sq = sq.sum();
   const double volume = size.prod();
   SpringSet springs;
-  springs.diagonal = 3.0 * g * diagonal_sq * volume /
-                     (4.0 * (sq.x() * sq.y() + sq.y() * sq.z() + sq.z() * sq.x()));
+  springs.diagonal = 3.0 * g * diagonal_sq * volume / (4.0 * (sq.x() * sq.y() + sq.y() * sq.z() + sq.z() * sq.x()));
   for (int a = 0; a < 3; ++a) {
     const double others = diagonal_sq - sq[a];
-    springs.edge[a] = e * volume / (4.0 * sq[a]) -
-                      springs.diagonal * (sq[a] - nu * others) / diagonal_sq;
+    springs.edge[a] = e * volume / (4.0 * sq[a]) - springs.diagonal * (sq[a] - nu * others) / diagonal_sq;
   }
   return springs;
 }
@@ -105,10 +103,8 @@ Status check_exact_bending(const ExactBendingParameters& p, const Eigen::Vector3
 
 const char* cell_model_name(CellModel model) {
   switch (model) {
-    case CellModel::kBaudet2007:
-      return "baudet2007";
-    case CellModel::kExactBending:
-      return "exact-bending";
+    case CellModel::kBaudet2007: return "baudet2007";
+    case CellModel::kExactBending: return "exact-bending";
   }
   return "unknown";
 }
@@ -120,8 +116,8 @@ Result<CellModel> parse_cell_model(const std::string& name) {
   return Status::error("unknown cell model '" + name + "': expected baudet2007 or exact-bending");
 }
 
-Result<CellCalibration> calibrate_cell(CellModel model, const Material& material,
-                                       const Eigen::Vector3d& cell_size, const ExactBendingParameters& parameters) {
+Result<CellCalibration> calibrate_cell(CellModel model, const Material& material, const Eigen::Vector3d& cell_size,
+                                       const ExactBendingParameters& parameters) {
   if (Status status = validate(material); !status) return status;
   if (!cell_size.allFinite() || cell_size.minCoeff() <= 0.0) {
     std::ostringstream message;
@@ -131,9 +127,7 @@ Result<CellCalibration> calibrate_cell(CellModel model, const Material& material
   SpringSet springs{Eigen::Vector3d::Zero(), 0.0};
   double twist_stiffness = 0.0;
   switch (model) {
-    case CellModel::kBaudet2007:
-      springs = baudet_springs(material, cell_size);
-      break;
+    case CellModel::kBaudet2007: springs = baudet_springs(material, cell_size); break;
     case CellModel::kExactBending:
       if (Status status = check_exact_bending(parameters, cell_size); !status) return status;
       springs = exact_bending_springs(material, cell_size.x(), parameters.edge_fraction);
@@ -144,10 +138,10 @@ Result<CellCalibration> calibrate_cell(CellModel model, const Material& material
     Eigen::Index axis = 0;
     springs.edge.minCoeff(&axis);
     std::ostringstream message;
-    message << "cell size " << cell_size.x() << " x " << cell_size.y() << " x " << cell_size.z()
-            << " m (aspect ratio " << cell_size.maxCoeff() / cell_size.minCoeff() << ") gives the "
-            << "xyz"[axis] << "-edges a stiffness of " << springs.edge[axis] << " N/m <= 0 at nu = "
-            << material.poisson_ratio << "; with the " << cell_model_name(model)
+    message << "cell size " << cell_size.x() << " x " << cell_size.y() << " x " << cell_size.z() << " m (aspect ratio "
+            << cell_size.maxCoeff() / cell_size.minCoeff() << ") gives the "
+            << "xyz"[axis] << "-edges a stiffness of " << springs.edge[axis]
+            << " N/m <= 0 at nu = " << material.poisson_ratio << "; with the " << cell_model_name(model)
             << " model a cell elongated along one axis needs an aspect ratio below about "
             << aspect_ratio_limit(material) << " at this nu (docs/model-baudet2007.md section 4)";
     return Status::error(message.str());
@@ -155,8 +149,7 @@ Result<CellCalibration> calibrate_cell(CellModel model, const Material& material
   CellCalibration calibration;
   calibration.edge_stiffness = springs.edge;
   calibration.diagonal_stiffness = springs.diagonal;
-  calibration.correction =
-      isotropic_normal_stiffness(material) - spring_normal_stiffness(springs, cell_size);
+  calibration.correction = isotropic_normal_stiffness(material) - spring_normal_stiffness(springs, cell_size);
   calibration.twist_stiffness = twist_stiffness;
   return calibration;
 }

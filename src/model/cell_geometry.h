@@ -39,8 +39,8 @@ struct CellFrame {
     const Eigen::Vector3d xy = edge[0].cross(edge[1]);
     std::array<Eigen::Vector3d, kCornersPerCell> gradient;
     for (int corner = 0; corner < kCornersPerCell; ++corner) {
-      gradient[corner] = 0.25 * (corner_side(corner, 0) * yz + corner_side(corner, 1) * zx +
-                                 corner_side(corner, 2) * xy);
+      gradient[corner] =
+          0.25 * (corner_side(corner, 0) * yz + corner_side(corner, 1) * zx + corner_side(corner, 2) * xy);
     }
     return gradient;
   }

@@ -22,8 +22,7 @@ Result<std::vector<int>> nodes_in(const Model& model, const Eigen::Vector3d& low
 
 }  // namespace
 
-Constraints::Constraints(const Model& model)
-    : driven_(model.num_nodes(), 0), target_(model.rest_positions) {}
+Constraints::Constraints(const Model& model) : driven_(model.num_nodes(), 0), target_(model.rest_positions) {}
 
 Status Constraints::check_index(int node) const {
   if (node < 0 || node >= num_nodes()) {

@@ -29,8 +29,7 @@ Status check_lattice_size(double cells, std::uint64_t memory_limit) {
   return {};
 }
 
-LatticeDesc box_lattice(const Eigen::Vector3i& counts, const Eigen::Vector3d& cell_size,
-                        const Material& material) {
+LatticeDesc box_lattice(const Eigen::Vector3i& counts, const Eigen::Vector3d& cell_size, const Material& material) {
   LatticeDesc desc;
   desc.cell_size = cell_size;
   desc.materials = {material};

@@ -28,26 +28,25 @@ Status validate(const Material& material) {
   }
   if (!std::isfinite(material.poisson_ratio) || material.poisson_ratio <= kMinPoissonRatio ||
       material.poisson_ratio >= kMaxPoissonRatio) {
-    return Status::error("poisson_ratio = " + format(material.poisson_ratio) +
-                         ": the cube model needs " + format(kMinPoissonRatio) + " < nu < " +
-                         format(kMaxPoissonRatio) +
+    return Status::error("poisson_ratio = " + format(material.poisson_ratio) + ": the cube model needs " +
+                         format(kMinPoissonRatio) + " < nu < " + format(kMaxPoissonRatio) +
                          " (edge springs vanish at -0.25, the bulk modulus is infinite at 0.5)");
   }
   // the moduli the springs and corrections come from (near the ends of double's range they
   // overflow, or underflow to a stiffness of 0)
   if (!std::isnormal(shear_modulus(material)) || !std::isnormal(p_wave_modulus(material))) {
-    return Status::error("young_modulus = " + format(material.young_modulus) + " Pa with poisson_ratio = " +
-                         format(material.poisson_ratio) + ": the shear modulus " + format(shear_modulus(material)) +
-                         " Pa or the P-wave modulus " + format(p_wave_modulus(material)) +
-                         " Pa is out of the range of double");
+    return Status::error("young_modulus = " + format(material.young_modulus) +
+                         " Pa with poisson_ratio = " + format(material.poisson_ratio) + ": the shear modulus " +
+                         format(shear_modulus(material)) + " Pa or the P-wave modulus " +
+                         format(p_wave_modulus(material)) + " Pa is out of the range of double");
   }
   if (!std::isfinite(material.density) || material.density <= 0.0) {
-    return Status::error("density = " + format(material.density) +
-                         " kg/m^3: density must be a finite number > 0");
+    return Status::error("density = " + format(material.density) + " kg/m^3: density must be a finite number > 0");
   }
   if (material.density < kMinDensity || material.density > kMaxDensity) {
-    return Status::error("density = " + format(material.density) + " kg/m^3: must be " + format(kMinDensity) +
-                         " to " + format(kMaxDensity) + " kg/m^3 (beyond, masses, weights and time steps "
+    return Status::error("density = " + format(material.density) + " kg/m^3: must be " + format(kMinDensity) + " to " +
+                         format(kMaxDensity) +
+                         " kg/m^3 (beyond, masses, weights and time steps "
                          "leave the range of double)");
   }
   if (!std::isfinite(material.mass_damping) || material.mass_damping < 0.0) {
@@ -73,9 +72,7 @@ Material soft_tissue(double young_modulus) {
 
 double shear_modulus(const Material& m) { return m.young_modulus / (2.0 * (1.0 + m.poisson_ratio)); }
 
-double bulk_modulus(const Material& m) {
-  return m.young_modulus / (3.0 * (1.0 - 2.0 * m.poisson_ratio));
-}
+double bulk_modulus(const Material& m) { return m.young_modulus / (3.0 * (1.0 - 2.0 * m.poisson_ratio)); }
 
 double lame_lambda(const Material& m) {
   const double nu = m.poisson_ratio;

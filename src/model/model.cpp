@@ -78,8 +78,8 @@ Status check_desc(const LatticeDesc& desc) {
     }
   }
   if (!desc.cell_material.empty() && desc.cell_material.size() != desc.cells.size()) {
-    return Status::error("cell_material has " + std::to_string(desc.cell_material.size()) +
-                         " entries for " + std::to_string(desc.cells.size()) + " cells");
+    return Status::error("cell_material has " + std::to_string(desc.cell_material.size()) + " entries for " +
+                         std::to_string(desc.cells.size()) + " cells");
   }
   for (std::size_t c = 0; c < desc.cell_material.size(); ++c) {
     const int m = desc.cell_material[c];
@@ -90,8 +90,7 @@ Status check_desc(const LatticeDesc& desc) {
   }
   for (std::size_t c = 0; c < desc.cells.size(); ++c) {
     if (desc.cells[c].cwiseAbs().maxCoeff() > kMaxGridIndex) {
-      return Status::error("cell " + std::to_string(c) + " has a grid index beyond +-" +
-                           std::to_string(kMaxGridIndex));
+      return Status::error("cell " + std::to_string(c) + " has a grid index beyond +-" + std::to_string(kMaxGridIndex));
     }
   }
   return {};
@@ -149,8 +148,9 @@ Result<Model> build_model(const LatticeDesc& desc) {
     calibrations.push_back(calibration.value());
     if (desc.law == CellLaw::kNeoHookean) {
       const CellCalibration& c = calibrations.back();
-      model.law_constants.push_back(neo_hookean_constants(shear_modulus(desc.materials[m]), bulk_modulus(desc.materials[m]),
-                                                          desc.cell_size, c.edge_stiffness, c.diagonal_stiffness));
+      model.law_constants.push_back(neo_hookean_constants(shear_modulus(desc.materials[m]),
+                                                          bulk_modulus(desc.materials[m]), desc.cell_size,
+                                                          c.edge_stiffness, c.diagonal_stiffness));
     }
   }
   const bool springs_law = desc.law == CellLaw::kSprings;
@@ -172,7 +172,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
   std::vector<std::int64_t>& keys = model.sorted_node_keys_;
   keys.reserve(cell_order.size() * 2);
   for (const Eigen::Vector3i& cell : desc.cells) {
-    for (int corner = 0; corner < kCornersPerCell; ++corner) keys.push_back(grid_key(cell + corner_offset(corner), major_axis));
+    for (int corner = 0; corner < kCornersPerCell; ++corner)
+      keys.push_back(grid_key(cell + corner_offset(corner), major_axis));
   }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
@@ -206,7 +207,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
     const CellCalibration& calibration = calibrations[m];
     model.cell_grid_index[c] = desc.cells[source];
     model.cell_material[c] = m;
-    model.cell_correction[c] = springs_law ? calibration.correction : neo_hookean_edge_correction(model.law_constants[m]);
+    model.cell_correction[c] =
+        springs_law ? calibration.correction : neo_hookean_edge_correction(model.law_constants[m]);
     model.cell_inversion_stiffness[c] = springs_law ? kInversionStiffnessFactor * material.young_modulus : 0.0;
     model.cell_twist_stiffness[c] = calibration.twist_stiffness;
     model.has_twist |= calibration.twist_stiffness > 0.0;

@@ -82,8 +82,8 @@ MeanEdgeHessian neo_hookean_cell_hessian(const NeoHookeanConstants& k, const Cel
   const std::array<Eigen::Vector3d, 3>& m = frame.edge;
   const double v0 = k.rest_volume;
   const Eigen::Array3d inverse_sq = k.cell_size.array().square().inverse();
-  const double i1 = m[0].squaredNorm() * inverse_sq[0] + m[1].squaredNorm() * inverse_sq[1] +
-                    m[2].squaredNorm() * inverse_sq[2];
+  const double i1 =
+      m[0].squaredNorm() * inverse_sq[0] + m[1].squaredNorm() * inverse_sq[1] + m[2].squaredNorm() * inverse_sq[2];
   Eigen::Matrix<double, 9, 1> dj, di1;  // dJ/dm and dI1/dm
   dj << m[1].cross(m[2]), m[2].cross(m[0]), m[0].cross(m[1]);
   dj /= v0;
@@ -108,7 +108,8 @@ MeanEdgeHessian neo_hookean_cell_hessian(const NeoHookeanConstants& k, const Cel
     h.block<3, 3>(3 * q, 3 * p) += block.transpose();
   }
   for (int d = 0; d < 4; ++d) {
-    const Eigen::Matrix3d spring = spring_hessian(homogeneous_diagonal(frame, d), k.diagonal_stiffness, k.diagonal_length);
+    const Eigen::Matrix3d spring =
+        spring_hessian(homogeneous_diagonal(frame, d), k.diagonal_stiffness, k.diagonal_length);
     for (int p = 0; p < 3; ++p) {
       for (int q = 0; q < 3; ++q) h.block<3, 3>(3 * p, 3 * q) -= diagonal_sign(d, p) * diagonal_sign(d, q) * spring;
     }
@@ -145,10 +146,8 @@ NeoHookeanConstants neo_hookean_constants(double g, double b, const Eigen::Vecto
 
 const char* cell_law_name(CellLaw law) {
   switch (law) {
-    case CellLaw::kSprings:
-      return "springs";
-    case CellLaw::kNeoHookean:
-      return "neo-hookean";
+    case CellLaw::kSprings: return "springs";
+    case CellLaw::kNeoHookean: return "neo-hookean";
   }
   return "unknown";
 }

@@ -83,8 +83,8 @@ Result<State> load_state(const Model& model, const std::string& path) {
                          " now (Model::major_axis), so the file's nodes would land on the wrong ones");
   }
   if (num_nodes != model.num_nodes()) {
-    return Status::error(path + ": the state has " + std::to_string(num_nodes) +
-                         " nodes, the model has " + std::to_string(model.num_nodes()));
+    return Status::error(path + ": the state has " + std::to_string(num_nodes) + " nodes, the model has " +
+                         std::to_string(model.num_nodes()));
   }
   State state;
   state.positions.resize(3, num_nodes);

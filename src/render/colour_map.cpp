@@ -27,8 +27,8 @@ std::vector<Eigen::Vector3f> from_hex(std::initializer_list<std::uint32_t> table
 
 ColourMap ColourMap::viridis() {
   // matplotlib's viridis at 15 evenly spaced stops (R viridisLite::viridis(15))
-  return ColourMap(from_hex({0x440154, 0x481B6D, 0x46337E, 0x3F4889, 0x365C8D, 0x2E6E8E, 0x277F8E, 0x21908C,
-                             0x1FA187, 0x2DB27D, 0x4AC16D, 0x71CF57, 0x9FDA3A, 0xCFE11C, 0xFDE725}));
+  return ColourMap(from_hex({0x440154, 0x481B6D, 0x46337E, 0x3F4889, 0x365C8D, 0x2E6E8E, 0x277F8E, 0x21908C, 0x1FA187,
+                             0x2DB27D, 0x4AC16D, 0x71CF57, 0x9FDA3A, 0xCFE11C, 0xFDE725}));
 }
 
 ColourMap ColourMap::blue_white_red() {

@@ -18,7 +18,8 @@ using Rgb = std::array<std::uint8_t, 3>;
 const Rgb kInk{30, 30, 30};
 const Rgb kGrid{225, 225, 225};
 // Okabe-Ito colours: told apart by colour-blind readers too
-const std::array<Rgb, 6> kLines{{{0, 114, 178}, {213, 94, 0}, {0, 158, 115}, {204, 121, 167}, {230, 159, 0}, {86, 180, 233}}};
+const std::array<Rgb, 6> kLines{
+    {{0, 114, 178}, {213, 94, 0}, {0, 158, 115}, {204, 121, 167}, {230, 159, 0}, {86, 180, 233}}};
 
 class Canvas {
  public:
@@ -30,7 +31,8 @@ class Canvas {
 
   void dot(int x, int y, const Rgb& colour) {
     if (x < 0 || y < 0 || x >= image_.width || y >= image_.height) return;
-    std::uint8_t* p = &image_.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image_.width) + static_cast<std::size_t>(x))];
+    std::uint8_t* p = &image_.rgb[3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(image_.width) +
+                                       static_cast<std::size_t>(x))];
     std::copy(colour.begin(), colour.end(), p);
   }
 
@@ -133,7 +135,8 @@ Image plot_forces(const std::vector<ForceSeries>& series, int width, int height)
   canvas.rect(left, top, 1, bottom - top + 1, kInk);
   canvas.rect(left, bottom, right - left + 1, 1, kInk);
   const std::string x_label = "TIME [S]";
-  canvas.text(x_label, (left + right - Canvas::text_width(x_label, scale)) / 2, bottom + (kGlyphHeight + 16) * scale, scale, kInk);
+  canvas.text(x_label, (left + right - Canvas::text_width(x_label, scale)) / 2, bottom + (kGlyphHeight + 16) * scale,
+              scale, kInk);
   canvas.text("TOOL FORCE [N]", left - 8 * scale, top - (kGlyphHeight + 12) * scale, scale, kInk);
 
   // one line per tool, and its name in the key at the top right

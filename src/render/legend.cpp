@@ -71,7 +71,8 @@ void draw_legend_overlay(const LegendRequest& legend, int output_width, int outp
 
   // ink that stands out from the background: white on dark, black on light
   const float luminance = 0.2126f * background.x() + 0.7152f * background.y() + 0.0722f * background.z();
-  const Eigen::Vector3f ink = luminance < 0.5f ? Eigen::Vector3f(0.95f, 0.95f, 0.95f) : Eigen::Vector3f(0.05f, 0.05f, 0.05f);
+  const Eigen::Vector3f ink =
+      luminance < 0.5f ? Eigen::Vector3f(0.95f, 0.95f, 0.95f) : Eigen::Vector3f(0.05f, 0.05f, 0.05f);
   const Eigen::Vector3f shadow = Eigen::Vector3f::Ones() - ink;
 
   // bar at the right edge, centred vertically; the font grows with the image (1 unit up to 719 rows)

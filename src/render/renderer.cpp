@@ -11,20 +11,20 @@
 #include <optional>
 #include <utility>
 
-#include <GL/osmesa.h>
 #include <GL/gl.h>
+#include <GL/osmesa.h>
 
 #include "legend.h"
 
 namespace cubespring {
 namespace {
 
-constexpr int kMaxRenderSide = 8192;    // rendered pixels a side: our buffer, OSMesa's colour and depth
-                                        // surfaces take 4 bytes a pixel each, 768 MiB at most
+constexpr int kMaxRenderSide = 8192;  // rendered pixels a side: our buffer, OSMesa's colour and depth
+                                      // surfaces take 4 bytes a pixel each, 768 MiB at most
 constexpr int kMaxSupersampling = 8;
-constexpr int kMaxLights = 8;           // GL_LIGHT0 .. GL_LIGHT7 of the fixed pipeline
+constexpr int kMaxLights = 8;  // GL_LIGHT0 .. GL_LIGHT7 of the fixed pipeline
 constexpr int kMaxFloorTilesPerSide = 400;
-constexpr float kSpecular = 0.15f;      // a faint highlight shows the shape of smooth surfaces
+constexpr float kSpecular = 0.15f;  // a faint highlight shows the shape of smooth surfaces
 constexpr float kShininess = 32.0f;
 constexpr float kCheckerDarkening = 0.85f;
 
@@ -54,8 +54,8 @@ Status check_settings(const RenderSettings& s) {
   if (s.width < 1) return check_side("width", s.width, 1);
   if (s.height < 1) return check_side("height", s.height, 1);
   if (s.supersampling < 1 || s.supersampling > kMaxSupersampling) {
-    return Status::error("RenderSettings::supersampling is " + std::to_string(s.supersampling) +
-                         ": it must be 1 to " + std::to_string(kMaxSupersampling));
+    return Status::error("RenderSettings::supersampling is " + std::to_string(s.supersampling) + ": it must be 1 to " +
+                         std::to_string(kMaxSupersampling));
   }
   if (Status side = check_side("width", s.width, s.supersampling); !side) return side;
   if (Status side = check_side("height", s.height, s.supersampling); !side) return side;
@@ -184,8 +184,8 @@ Status check_indices(const char* call, const char* what, const int* indices, Eig
   for (Eigen::Index k = 0; k < items * per_item; ++k) {
     if (indices[k] < 0 || indices[k] >= num_points) {
       return Status::error(std::string(call) + ": " + what + " " + std::to_string(k / per_item) + " names " +
-                           point_name + " " + std::to_string(indices[k]) + "; there are " +
-                           std::to_string(num_points) + " " + point_name + "s");
+                           point_name + " " + std::to_string(indices[k]) + "; there are " + std::to_string(num_points) +
+                           " " + point_name + "s");
     }
   }
   return {};
@@ -209,7 +209,7 @@ std::vector<Light> default_lights() {
 
 struct Renderer::Context {
   RenderSettings settings;
-  int render_width = 0;   // output size x supersampling [pixels]
+  int render_width = 0;  // output size x supersampling [pixels]
   int render_height = 0;
   std::vector<std::uint8_t> buffer;  // RGBA, bottom row first (OSMesa's default), render size
   OSMesaContext osmesa = nullptr;
@@ -251,8 +251,9 @@ Result<Renderer> Renderer::create(const RenderSettings& settings) {
   // RGBA with a 24-bit depth buffer; no stencil or accumulation buffer is needed
   context->osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
   if (context->osmesa == nullptr) {
-    return Status::error("Renderer: OSMesaCreateContextExt failed to create an RGBA context with a 24-bit depth "
-                         "buffer (is libOSMesa's driver installed?)");
+    return Status::error(
+        "Renderer: OSMesaCreateContextExt failed to create an RGBA context with a 24-bit depth "
+        "buffer (is libOSMesa's driver installed?)");
   }
   if (!context->make_current()) {
     return Status::error("Renderer: OSMesaMakeCurrent failed for a " + std::to_string(context->render_width) + " x " +

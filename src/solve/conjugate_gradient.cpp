@@ -77,7 +77,8 @@ ConjugateGradientResult conjugate_gradient(const SparseMatrix& a, const Eigen::V
     const auto block_dots = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v, std::vector<double>& partials) {
       for (int block = first_block; block < end_block; ++block) {
         const int begin = block * kRowsPerBlock;
-        partials[static_cast<std::size_t>(block)] = dot(u.data() + begin, v.data() + begin, std::min(n, begin + kRowsPerBlock) - begin);
+        partials[static_cast<std::size_t>(block)] =
+            dot(u.data() + begin, v.data() + begin, std::min(n, begin + kRowsPerBlock) - begin);
       }
     };
 

@@ -87,8 +87,8 @@ void add_box_fronts(const Eigen::Vector3i& lo, const Eigen::Vector3i& hi, const 
     return (b - a + Eigen::Vector3i::Ones()).cast<double>().prod();
   };
   const auto add_front = [&](double own_nodes) {
-    const double around = nodes((lo - Eigen::Vector3i::Ones()).cwiseMax(0), (hi + Eigen::Vector3i::Ones()).cwiseMin(top)) -
-                          nodes(lo, hi);
+    const double around =
+        nodes((lo - Eigen::Vector3i::Ones()).cwiseMax(0), (hi + Eigen::Vector3i::Ones()).cwiseMin(top)) - nodes(lo, hi);
     const double own = 3 * own_nodes, update = 3 * around, size = own + update;
     cost.factor_bytes += 8 * size * own;  // the front's columns of L, kept
     largest_front = std::max(largest_front, 8 * size * size);
@@ -177,7 +177,7 @@ bool GridLDLT::factorise(const Eigen::SparseMatrix<double>& k, double shift) {
     analysed_ = true;
   }
   pivots_.resize(permuted.rows());
-  std::vector<int> local(permuted.rows(), -1);  // place -> row in the current front
+  std::vector<int> local(permuted.rows(), -1);           // place -> row in the current front
   std::vector<Eigen::MatrixXd> updates(fronts_.size());  // Schur complements waiting for a parent
   for (std::size_t f = 0; f < fronts_.size(); ++f) {
     Front& front = fronts_[f];
@@ -237,7 +237,8 @@ void GridLDLT::backward(Eigen::VectorXd& y) const {
     auto head = y.segment(front->begin, own);
     if (!front->update.empty()) {
       Eigen::VectorXd gathered(front->update.size());
-      for (std::size_t u = 0; u < front->update.size(); ++u) gathered[static_cast<Eigen::Index>(u)] = y[front->update[u]];
+      for (std::size_t u = 0; u < front->update.size(); ++u)
+        gathered[static_cast<Eigen::Index>(u)] = y[front->update[u]];
       head -= front->lower.bottomRows(front->update.size()).transpose() * gathered;
     }
     front->lower.topRows(own).triangularView<Eigen::UnitLower>().transpose().solveInPlace(head);

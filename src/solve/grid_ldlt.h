@@ -40,10 +40,10 @@ class GridLDLT {
 
  private:
   struct Front {
-    int begin = 0, end = 0;       // its own unknowns: places [begin, end) in elimination order
-    std::vector<int> update;      // the later places it couples to, ascending
-    std::vector<int> children;    // fronts whose update it takes
-    Eigen::MatrixXd lower;        // (own + update) x own: unit lower L11 over L21
+    int begin = 0, end = 0;     // its own unknowns: places [begin, end) in elimination order
+    std::vector<int> update;    // the later places it couples to, ascending
+    std::vector<int> children;  // fronts whose update it takes
+    Eigen::MatrixXd lower;      // (own + update) x own: unit lower L11 over L21
   };
   void analyse(const Eigen::SparseMatrix<double>& permuted);
   // L^-1 and L^-T on a vector in elimination order

@@ -75,13 +75,14 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
       (!(settings.solver_tolerance > 0.0) || !std::isfinite(settings.solver_tolerance) ||
        settings.solver_max_iterations < 1)) {
     std::ostringstream message;
-    message << "solver_tolerance = " << settings.solver_tolerance << ", solver_max_iterations = "
-            << settings.solver_max_iterations
+    message << "solver_tolerance = " << settings.solver_tolerance
+            << ", solver_max_iterations = " << settings.solver_max_iterations
             << ": the implicit step needs a finite tolerance > 0 and at least 1 iteration";
     invalid = message.str();
   }
   if (!invalid.empty()) return {StepStatus::kInvalidInput, invalid};
-  if (settings.integrator == Integrator::kImplicitEuler) return implicit_step(model, constraints, loads, settings, state);
+  if (settings.integrator == Integrator::kImplicitEuler)
+    return implicit_step(model, constraints, loads, settings, state);
   return explicit_step(model, constraints, loads, settings, state);
 }
 
@@ -114,12 +115,12 @@ std::string where_it_failed(const Model& model, const State& candidate, const St
 
 }  // namespace
 
-StepReport Stepper::check(const Model& model, const StepSettings& settings, double fastest,
-                          const State& candidate, const State& start, bool positions_checked) const {
+StepReport Stepper::check(const Model& model, const StepSettings& settings, double fastest, const State& candidate,
+                          const State& start, bool positions_checked) const {
   const double limit = settings.speed_limit > 0.0 ? settings.speed_limit : 10.0 * max_wave_speed(model);
   // x - x is 0 for a finite x and NaN otherwise; its sum is a vectorised allFinite()
-  const bool finite = std::isfinite(fastest) &&
-                      (positions_checked || std::isfinite((candidate.positions - candidate.positions).sum()));
+  const bool finite =
+      std::isfinite(fastest) && (positions_checked || std::isfinite((candidate.positions - candidate.positions).sum()));
   if (finite && fastest <= limit) return {};
   std::ostringstream message;
   if (!finite) {
@@ -208,51 +209,51 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   double* values = system_.valuePtr();
   // the threads share the nodes, then (once every driven velocity is known) their rows: each
   // entry is changed by one thread, the same way on any thread count
-  run_shares(std::min(settings.threads, num_nodes / kMinNodesPerThread), [&](int share, int shares,
-                                                                            const auto& barrier) {
-    const auto [first, end] = equal_share(num_nodes, share, shares);
-    for (int n = first; n < end; ++n) {
-      const double mass = model.mass[n];
-      const double mass_term = mass + dt * model.mass_damping[n];
-      for (int a = 0; a < 3; ++a) {
-        rhs[3 * n + a] = mass * state.velocities(a, n) + dt * forces_(a, n);
-        guess[3 * n + a] = state.velocities(a, n);
-      }
-      // the mass sits on the diagonal block's own entries
-      for (int a = 0; a < 3; ++a) {
-        const int row = 3 * n + a;
-        const int* hit = std::lower_bound(inner + outer[row], inner + outer[row + 1], row);
-        values[hit - inner] += mass_term;
-      }
-      if (n < constraints.num_nodes() && constraints.is_driven(n)) {
-        const Eigen::Vector3d velocity = (constraints.target(n) - state.positions.col(n)) / dt;
-        for (int a = 0; a < 3; ++a) {
-          if (((constraints.driven_axes(n) >> a) & 1) == 0) continue;
-          driven[3 * n + a] = 1;
-          guess[3 * n + a] = velocity[a];
-        }
-      }
-    }
-    if (constraints.num_driven() == 0) return;
-    barrier();
-    // eliminate driven unknowns: move their columns to the right-hand side, identity rows
-    for (int row = 3 * first; row < 3 * end; ++row) {
-      for (int e = outer[row]; e < outer[row + 1]; ++e) {
-        const int col = inner[e];
-        if (driven[row]) {
-          values[e] = row == col ? 1.0 : 0.0;
-        } else if (driven[col]) {
-          rhs[row] -= values[e] * guess[col];
-          values[e] = 0.0;
-        }
-      }
-      if (driven[row]) rhs[row] = guess[row];
-    }
-  });
+  run_shares(std::min(settings.threads, num_nodes / kMinNodesPerThread),
+             [&](int share, int shares, const auto& barrier) {
+               const auto [first, end] = equal_share(num_nodes, share, shares);
+               for (int n = first; n < end; ++n) {
+                 const double mass = model.mass[n];
+                 const double mass_term = mass + dt * model.mass_damping[n];
+                 for (int a = 0; a < 3; ++a) {
+                   rhs[3 * n + a] = mass * state.velocities(a, n) + dt * forces_(a, n);
+                   guess[3 * n + a] = state.velocities(a, n);
+                 }
+                 // the mass sits on the diagonal block's own entries
+                 for (int a = 0; a < 3; ++a) {
+                   const int row = 3 * n + a;
+                   const int* hit = std::lower_bound(inner + outer[row], inner + outer[row + 1], row);
+                   values[hit - inner] += mass_term;
+                 }
+                 if (n < constraints.num_nodes() && constraints.is_driven(n)) {
+                   const Eigen::Vector3d velocity = (constraints.target(n) - state.positions.col(n)) / dt;
+                   for (int a = 0; a < 3; ++a) {
+                     if (((constraints.driven_axes(n) >> a) & 1) == 0) continue;
+                     driven[3 * n + a] = 1;
+                     guess[3 * n + a] = velocity[a];
+                   }
+                 }
+               }
+               if (constraints.num_driven() == 0) return;
+               barrier();
+               // eliminate driven unknowns: move their columns to the right-hand side, identity rows
+               for (int row = 3 * first; row < 3 * end; ++row) {
+                 for (int e = outer[row]; e < outer[row + 1]; ++e) {
+                   const int col = inner[e];
+                   if (driven[row]) {
+                     values[e] = row == col ? 1.0 : 0.0;
+                   } else if (driven[col]) {
+                     rhs[row] -= values[e] * guess[col];
+                     values[e] = 0.0;
+                   }
+                 }
+                 if (driven[row]) rhs[row] = guess[row];
+               }
+             });
 
   Eigen::VectorXd& velocity = guess;  // solved in place
-  const ConjugateGradientResult solved = conjugate_gradient(
-      system_, rhs, velocity, settings.solver_tolerance, settings.solver_max_iterations, settings.threads);
+  const ConjugateGradientResult solved = conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance,
+                                                            settings.solver_max_iterations, settings.threads);
   StepReport report;
   report.solver_iterations = solved.iterations;
   report.solver_residual = solved.relative_residual;

@@ -130,8 +130,9 @@ double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positi
     }
   }
   const double thinnest =
-      thinnest_cell < 0 ? 1.0
-                        : std::min(1.0, effective_thickness(model, cell_frame(model, positions, thinnest_cell), thinnest_axis));
+      thinnest_cell < 0
+          ? 1.0
+          : std::min(1.0, effective_thickness(model, cell_frame(model, positions, thinnest_cell), thinnest_axis));
   return std::clamp(thinnest / kThickEnough, kLeast, 1.0);
 }
 

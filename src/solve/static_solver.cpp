@@ -30,8 +30,8 @@ struct Problem {
   const Constraints& constraints;
   const Loads& full_loads;
   std::vector<std::uint8_t> driven;  // per degree of freedom
-  bool held = false;                  // the driven dofs hold every rigid motion (holds_the_body)
-  double load_done = 0.0;             // the load fraction the increments done have reached
+  bool held = false;                 // the driven dofs hold every rigid motion (holds_the_body)
+  double load_done = 0.0;            // the load fraction the increments done have reached
 };
 
 Loads scaled_loads(const Loads& loads, double factor) {
@@ -42,8 +42,7 @@ Loads scaled_loads(const Loads& loads, double factor) {
 }
 
 // Residual force on the free degrees of freedom (zero on driven ones).
-Eigen::VectorXd residual(const Problem& problem, const Loads& loads, const Eigen::Matrix3Xd& x,
-                         ForceWorkspace& ws) {
+Eigen::VectorXd residual(const Problem& problem, const Loads& loads, const Eigen::Matrix3Xd& x, ForceWorkspace& ws) {
   State state;
   state.positions = x;
   state.velocities.setZero(3, x.cols());
@@ -124,7 +123,7 @@ bool newton(const Problem& problem, const Loads& loads, double reference_force, 
     const double energy = potential_energy(problem.model, loads, x);
     const double round_off = 1e-12 * std::max(std::abs(energy), reference_force * cell);
     double slope = -r.dot(dx);  // dE/dalpha at alpha = 0
-    if (!(slope < 0.0)) {        // not downhill: along the force, a tenth of a cell at most at first
+    if (!(slope < 0.0)) {       // not downhill: along the force, a tenth of a cell at most at first
       dx = r * (0.1 * cell / r.cwiseAbs().maxCoeff());
       slope = -r.dot(dx);
     }
@@ -174,8 +173,7 @@ Eigen::VectorXd negative_curvature(const Problem& problem, StiffnessAssembler& a
 
 // Moves x downhill along +-direction (the side and length, up to 4 times it, of lowest energy).
 // False when neither side lowers the energy.
-bool leave_downhill(const Problem& problem, const Loads& loads, const Eigen::VectorXd& direction,
-                    Eigen::Matrix3Xd& x) {
+bool leave_downhill(const Problem& problem, const Loads& loads, const Eigen::VectorXd& direction, Eigen::Matrix3Xd& x) {
   const Eigen::Map<const Eigen::Matrix3Xd> step(direction.data(), 3, x.cols());
   double best = potential_energy(problem.model, loads, x);
   Eigen::Matrix3Xd best_x = x;
@@ -207,9 +205,10 @@ bool stable_equilibrium(const Problem& problem, const Loads& loads, double refer
     if (direction.size() == 0) return true;
     ++report.unstable_equilibria;
     if (report.unstable_equilibria > settings.max_instability_escapes) {
-      report.message = "the equilibrium found is unstable (its stiffness has a direction of negative curvature) "
-                       "and max_instability_escapes = " + std::to_string(settings.max_instability_escapes) +
-                       " escapes are spent";
+      report.message =
+          "the equilibrium found is unstable (its stiffness has a direction of negative curvature) "
+          "and max_instability_escapes = " +
+          std::to_string(settings.max_instability_escapes) + " escapes are spent";
       return false;
     }
     if (!leave_downhill(problem, loads, direction, x)) return false;
@@ -229,7 +228,8 @@ void predict(const Problem& problem, const Loads& loads, StiffnessAssembler& ass
   const Eigen::SparseMatrix<double> k = assembled;
   const Eigen::Matrix3Xd move = trial - x;  // nonzero on the driven dofs only
   ForceWorkspace ws;
-  Eigen::VectorXd rhs = residual(problem, loads, x, ws) - k * Eigen::Map<const Eigen::VectorXd>(move.data(), move.size());
+  Eigen::VectorXd rhs =
+      residual(problem, loads, x, ws) - k * Eigen::Map<const Eigen::VectorXd>(move.data(), move.size());
   for (Eigen::Index i = 0; i < rhs.size(); ++i) {
     if (problem.driven[i]) rhs[i] = 0.0;
   }
@@ -296,8 +296,8 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
   if (invalid.empty() && settings.max_instability_escapes < 0) {
     invalid = "max_instability_escapes = " + std::to_string(settings.max_instability_escapes) + ": must be >= 0";
   }
-  if (invalid.empty() && (settings.initial_load_steps < 1 || settings.max_load_steps < 1 ||
-                          settings.max_newton_iterations < 1)) {
+  if (invalid.empty() &&
+      (settings.initial_load_steps < 1 || settings.max_load_steps < 1 || settings.max_newton_iterations < 1)) {
     invalid = "initial_load_steps, max_load_steps and max_newton_iterations must each be >= 1 (got " +
               std::to_string(settings.initial_load_steps) + ", " + std::to_string(settings.max_load_steps) + ", " +
               std::to_string(settings.max_newton_iterations) + ")";
@@ -362,7 +362,8 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
     report.message.clear();
     if (settings.progress) settings.progress({problem.load_done, report.newton_iterations, report.residual});
     predict(problem, scaled_loads(loads, load_fraction(next)), *assembler, x, trial);
-    if (stable_equilibrium(problem, scaled_loads(loads, load_fraction(next)), reference_force, settings, *assembler, trial, report)) {
+    if (stable_equilibrium(problem, scaled_loads(loads, load_fraction(next)), reference_force, settings, *assembler,
+                           trial, report)) {
       x = trial;
       done = next;
       problem.load_done = load_fraction(done);
@@ -372,8 +373,8 @@ StaticReport solve_static(const Model& model, const Constraints& constraints, co
     }
     if (increment <= smallest * 1.000001) {
       std::ostringstream message;
-      message << "static solve did not converge at load fraction " << load_fraction(next) << " (residual " << report.residual
-              << " N after " << report.newton_iterations << " Newton iterations, smallest increment "
+      message << "static solve did not converge at load fraction " << load_fraction(next) << " (residual "
+              << report.residual << " N after " << report.newton_iterations << " Newton iterations, smallest increment "
               << increment << ")";
       if (!report.message.empty()) message << ": " << report.message;
       report.message = message.str();

@@ -243,8 +243,7 @@ void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {
 }
 
 void StiffnessAssembler::add_values(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
-                                    double stiffness_scale, double damping_scale, SparseMatrix& matrix,
-                                    int threads) {
+                                    double stiffness_scale, double damping_scale, SparseMatrix& matrix, int threads) {
   require_law_constants(model, "StiffnessAssembler");
   // the model's springs are read at every call; the cells' PSD parts are kept, made for each
   // correction the first time it is seen (a changed one, a stiffer region say, too): a compare
@@ -320,9 +319,10 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
         const int low = p & ~(1 << axis);
         const Eigen::Vector3d edge = x.col(model.cell_nodes[c][low | (1 << axis)]) - x.col(model.cell_nodes[c][low]);
         const double length = edge.norm();
-        strain_gradient[p].col(axis) = length > 0.0
-            ? Eigen::Vector3d(corner_side(p, axis) * edge / (length * kEdgesPerAxis * model.cell_size[axis]))
-            : Eigen::Vector3d::Zero();
+        strain_gradient[p].col(axis) =
+            length > 0.0
+                ? Eigen::Vector3d(corner_side(p, axis) * edge / (length * kEdgesPerAxis * model.cell_size[axis]))
+                : Eigen::Vector3d::Zero();
       }
     }
     for (int p = 0; p < kCornersPerCell; ++p) {

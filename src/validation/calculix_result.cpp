@@ -219,7 +219,8 @@ Result<FemSolution> FrdReader::assemble() const {
       for (int k : corners) face.push_back(columns[static_cast<std::size_t>(k)]);
       // turn the face to point away from its element, whatever the order convention
       const Eigen::Vector3d a = solution.rest_positions.col(face[0]);
-      const Eigen::Vector3d normal = (solution.rest_positions.col(face[1]) - a).cross(solution.rest_positions.col(face[2]) - a);
+      const Eigen::Vector3d normal =
+          (solution.rest_positions.col(face[1]) - a).cross(solution.rest_positions.col(face[2]) - a);
       if (normal.dot(a - centre) < 0) std::reverse(face.begin(), face.end());
       std::array<int, 4> key{-1, -1, -1, -1};
       std::copy(face.begin(), face.end(), key.begin());

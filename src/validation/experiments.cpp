@@ -45,7 +45,8 @@ double face_mean(const Eigen::Matrix3Xd& u, const Eigen::VectorXd& weights, int 
 double face_strain(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells, int axis) {
   const double length = cells[axis] * model.cell_size[axis];
   return (face_mean(u, face_weights(model, axis, 1, cells[axis]), axis) -
-          face_mean(u, face_weights(model, axis, 0, cells[axis]), axis)) / length;
+          face_mean(u, face_weights(model, axis, 0, cells[axis]), axis)) /
+         length;
 }
 
 // Below this size a strain's displacements are lost in the positions' round-off, and the moduli
@@ -57,8 +58,7 @@ constexpr double kLargestGravity = 1e6;  // [m/s^2]
 Status check_settings(Experiment experiment, const ExperimentSettings& s) {
   if (s.cells.minCoeff() < 1) {
     std::ostringstream message;
-    message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z()
-            << ": every count must be >= 1";
+    message << "cells = " << s.cells.x() << "," << s.cells.y() << "," << s.cells.z() << ": every count must be >= 1";
     return Status::error(message.str());
   }
   // before box_lattice() lists them
@@ -88,7 +88,7 @@ Status check_settings(Experiment experiment, const ExperimentSettings& s) {
     if (!std::isfinite(s.strain) || s.strain == 0.0 || s.strain < (shear ? -1.0 : -0.6) || s.strain > 1.0) {
       std::ostringstream message;
       message << "strain = " << s.strain << ": " << experiment_name(experiment) << " takes "
-              << (shear                                      ? "a shear gamma in [-1, 1]"
+              << (shear                                    ? "a shear gamma in [-1, 1]"
                   : experiment == Experiment::kHydrostatic ? "a volume change (J - 1) in [-0.6, 1]"
                                                            : "a nominal strain (stretch - 1) in [-0.6, 1]")
               << ", not 0";
@@ -164,8 +164,7 @@ Eigen::Vector3d lattice_shear_moduli(const Model& model) {
 // The displacement along `axis` at the centre of the body's far face normal to it (index
 // cells[axis]): the mean of the face's nodes nearest to its centre (one when both other counts of
 // cells are even, else 2 or 4), which is the bilinear value there.
-double face_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells,
-                                int axis) {
+double face_centre_displacement(const Model& model, const Eigen::Matrix3Xd& u, const Eigen::Vector3i& cells, int axis) {
   const int a = (axis + 1) % 3, b = (axis + 2) % 3;
   double sum = 0.0;
   int count = 0;
@@ -298,27 +297,32 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
   switch (experiment) {
     case Experiment::kElongation: {
       const double stress = e * settings.strain;
-      loads.nodal_forces.row(0) = stress * (face_weights(model, 0, 1, cells.x()) - face_weights(model, 0, 0, cells.x())).transpose();
+      loads.nodal_forces.row(0) =
+          stress * (face_weights(model, 0, 1, cells.x()) - face_weights(model, 0, 0, cells.x())).transpose();
       break;
     }
     case Experiment::kInflation: {
       const double pressure = 3.0 * b * settings.strain;
       for (int axis = 0; axis < 3; ++axis) {
         loads.nodal_forces.row(axis) -=
-            pressure * (face_weights(model, axis, 1, cells[axis]) - face_weights(model, axis, 0, cells[axis])).transpose();
+            pressure *
+            (face_weights(model, axis, 1, cells[axis]) - face_weights(model, axis, 0, cells[axis])).transpose();
       }
       break;
     }
     case Experiment::kShear: {
       if (settings.shear_control == ShearControl::kForce) {
         const double stress = g * settings.strain;
-        loads.nodal_forces.row(0) = stress * (face_weights(model, 2, 1, cells.z()) - face_weights(model, 2, 0, cells.z())).transpose();
-        loads.nodal_forces.row(2) = stress * (face_weights(model, 0, 1, cells.x()) - face_weights(model, 0, 0, cells.x())).transpose();
+        loads.nodal_forces.row(0) =
+            stress * (face_weights(model, 2, 1, cells.z()) - face_weights(model, 2, 0, cells.z())).transpose();
+        loads.nodal_forces.row(2) =
+            stress * (face_weights(model, 0, 1, cells.x()) - face_weights(model, 0, 0, cells.x())).transpose();
       } else {
         // three affine shears, one per plane, each its own solve
         Eigen::Vector3d moduli;
         for (int plane = 0; plane < 3; ++plane) {
-          Result<double> modulus = affine_shear_modulus(model, cells, (plane + 1) % 3, (plane + 2) % 3, settings.strain, static_settings);
+          Result<double> modulus =
+              affine_shear_modulus(model, cells, (plane + 1) % 3, (plane + 2) % 3, settings.strain, static_settings);
           if (!modulus) return modulus.status();
           moduli[plane] = modulus.value();
         }
@@ -356,8 +360,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
     case Experiment::kUniaxial:
     case Experiment::kSimpleShear:
     case Experiment::kHydrostatic:
-    case Experiment::kBondedCompression:
-      break;  // finite_strain_curve's, above
+    case Experiment::kBondedCompression: break;  // finite_strain_curve's, above
   }
 
   result.state = rest_state(model);
@@ -428,8 +431,7 @@ Result<ExperimentResult> run_experiment(Experiment experiment, const ExperimentS
     case Experiment::kUniaxial:
     case Experiment::kSimpleShear:
     case Experiment::kHydrostatic:
-    case Experiment::kBondedCompression:
-      break;
+    case Experiment::kBondedCompression: break;
   }
   return result;
 }

@@ -57,9 +57,8 @@ Result<Constraints> constraints_at(Experiment experiment, const Model& model, co
     case Experiment::kUniaxial: {
       // the platens: the faces x = 0 and x = L held along x, the second moved by the strain (the
       // targets are finite and the nodes the body's: these cannot fail)
-      for_face_nodes(model, 0, 0, [&](int n) {
-        (void)constraints.prescribe_axis_position(n, 0, model.rest_positions(0, n));
-      });
+      for_face_nodes(model, 0, 0,
+                     [&](int n) { (void)constraints.prescribe_axis_position(n, 0, model.rest_positions(0, n)); });
       for_face_nodes(model, 0, cells.x(), [&](int n) {
         (void)constraints.prescribe_axis_position(n, 0, model.rest_positions(0, n) + strain * size.x());
       });
@@ -88,8 +87,7 @@ Result<Constraints> constraints_at(Experiment experiment, const Model& model, co
       }
       break;
     }
-    default:
-      return Status::error(std::string(experiment_name(experiment)) + " is not a finite-strain experiment");
+    default: return Status::error(std::string(experiment_name(experiment)) + " is not a finite-strain experiment");
   }
   return constraints;
 }

@@ -154,10 +154,10 @@ void add_triangle_crossings(const std::array<Point2, 3>& projected, const std::a
       const std::int64_t w1 = edge_function(p[2], p[0], q);
       const std::int64_t w2 = edge_function(p[0], p[1], q);
       if (!covers(w0, p[1], p[2]) || !covers(w1, p[2], p[0]) || !covers(w2, p[0], p[1])) continue;
-      const double position = (static_cast<double>(w0) * static_cast<double>(a[0]) +
-                               static_cast<double>(w1) * static_cast<double>(a[1]) +
-                               static_cast<double>(w2) * static_cast<double>(a[2])) /
-                              static_cast<double>(w0 + w1 + w2);
+      const double position =
+          (static_cast<double>(w0) * static_cast<double>(a[0]) + static_cast<double>(w1) * static_cast<double>(a[1]) +
+           static_cast<double>(w2) * static_cast<double>(a[2])) /
+          static_cast<double>(w0 + w1 + w2);
       crossings.push_back({jb + rows_b * jc, position, sign});
     }
   }

@@ -14,8 +14,9 @@ std::vector<int> label_pieces(const CellGrid& grid, std::vector<int>& piece) {
   piece.assign(grid.label.size(), -1);
   std::vector<int> piece_size;
   std::vector<Eigen::Vector3i> queue;
-  const std::array<Eigen::Vector3i, 6> faces{Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(-1, 0, 0), Eigen::Vector3i(0, 1, 0),
-                                             Eigen::Vector3i(0, -1, 0), Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(0, 0, -1)};
+  const std::array<Eigen::Vector3i, 6> faces{Eigen::Vector3i(1, 0, 0), Eigen::Vector3i(-1, 0, 0),
+                                             Eigen::Vector3i(0, 1, 0), Eigen::Vector3i(0, -1, 0),
+                                             Eigen::Vector3i(0, 0, 1), Eigen::Vector3i(0, 0, -1)};
   for (int k = 0; k < grid.size.z(); ++k) {
     for (int j = 0; j < grid.size.y(); ++j) {
       for (int i = 0; i < grid.size.x(); ++i) {

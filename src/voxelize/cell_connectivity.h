@@ -23,8 +23,9 @@ struct CellGrid {
     return label[index(i, j, k)] >= 0;
   }
   std::size_t index(int i, int j, int k) const {
-    return static_cast<std::size_t>(i) + static_cast<std::size_t>(size.x()) *
-                                             (static_cast<std::size_t>(j) + static_cast<std::size_t>(size.y()) * static_cast<std::size_t>(k));
+    return static_cast<std::size_t>(i) +
+           static_cast<std::size_t>(size.x()) *
+               (static_cast<std::size_t>(j) + static_cast<std::size_t>(size.y()) * static_cast<std::size_t>(k));
   }
 };
 

@@ -19,9 +19,7 @@ struct SampleGrid {
   Eigen::Matrix<std::int64_t, 3, 1> origin_index{0, 0, 0};
 
   std::int64_t count() const { return std::int64_t{size.x()} * size.y() * size.z(); }
-  std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const {
-    return i + size.x() * (j + size.y() * k);
-  }
+  std::int64_t index(std::int64_t i, std::int64_t j, std::int64_t k) const { return i + size.x() * (j + size.y() * k); }
   Eigen::Vector3d centre(int i, int j, int k) const {
     return origin + spacing.cwiseProduct(Eigen::Vector3d(i + 0.5, j + 0.5, k + 0.5));
   }

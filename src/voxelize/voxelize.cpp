@@ -54,12 +54,10 @@ Status check_options(const VoxelizeOptions& options) {
   }
   if (options.rule == CellRule::kCoveredFraction) {
     if (!(options.min_covered_fraction > 0.0 && options.min_covered_fraction <= 1.0)) {
-      return Status::error("covered fraction " + std::to_string(options.min_covered_fraction) +
-                           " must be in (0, 1]");
+      return Status::error("covered fraction " + std::to_string(options.min_covered_fraction) + " must be in (0, 1]");
     }
     if (options.samples_per_axis < 1 || options.samples_per_axis > 8) {
-      return Status::error("samples per axis " + std::to_string(options.samples_per_axis) +
-                           " must be in 1..8");
+      return Status::error("samples per axis " + std::to_string(options.samples_per_axis) + " must be in 1..8");
     }
   }
   return {};
@@ -105,9 +103,9 @@ Result<PartSamples> inside_samples(const Eigen::Matrix3Xd& vertices, const Eigen
   result.undecided = static_cast<int>(undecided.size());
   if (static_cast<double>(undecided.size()) * static_cast<double>(triangles.cols()) > kWindingBudget) {
     std::ostringstream out;
-    out << "the surface is too open for the inside test: rays through its holes leave "
-        << undecided.size() << " samples of part '" << name << "' undecided (the surface has "
-        << open_edges << " open edges); close the holes or use a coarser cell size";
+    out << "the surface is too open for the inside test: rays through its holes leave " << undecided.size()
+        << " samples of part '" << name << "' undecided (the surface has " << open_edges
+        << " open edges); close the holes or use a coarser cell size";
     return Status::error(out.str());
   }
   for (const std::int64_t s : undecided) {
@@ -230,8 +228,8 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   }
 
   // grid: aligned with the world origin, one empty cell of margin around the mesh
-  result.cell_size = options.cells_across > 0 ? Eigen::Vector3d::Constant(longest / options.cells_across)
-                                              : options.cell_size;
+  result.cell_size =
+      options.cells_across > 0 ? Eigen::Vector3d::Constant(longest / options.cells_across) : options.cell_size;
   const Eigen::Vector3d first = (low.array() / result.cell_size.array()).floor() - 1.0;
   const Eigen::Vector3d last = (high.array() / result.cell_size.array()).ceil() + 1.0;
   const Eigen::Vector3d span = last - first;
@@ -247,8 +245,8 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   if (!(estimate <= static_cast<double>(limit)) || span.maxCoeff() > 1e6) {
     std::ostringstream out;
     out << "a grid of " << span.x() << " x " << span.y() << " x " << span.z() << " cells of "
-        << describe_vector(result.cell_size) << " m needs about " << estimate / 1e6
-        << " MB, over the memory limit of " << static_cast<double>(limit) / 1e6
+        << describe_vector(result.cell_size) << " m needs about " << estimate / 1e6 << " MB, over the memory limit of "
+        << static_cast<double>(limit) / 1e6
         << (options.max_memory_bytes > 0 ? " MB given" : " MB (half of this machine's memory)")
         << ": use a larger cell size or fewer cells across";
     return Status::error(out.str());
@@ -297,9 +295,8 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
       triangles.conservativeResize(3, triangles.cols() + part.triangle_count);
       triangles.rightCols(part.triangle_count) = mesh.triangles.middleCols(part.first_triangle, part.triangle_count);
     }
-    Result<PartSamples> solid_samples =
-        inside_samples(mesh.vertices, triangles, parts[static_cast<std::size_t>(owner)].name, samples,
-                       result.surface.open_edges);
+    Result<PartSamples> solid_samples = inside_samples(
+        mesh.vertices, triangles, parts[static_cast<std::size_t>(owner)].name, samples, result.surface.open_edges);
     if (!solid_samples) return solid_samples.status();
     result.undecided_cells += solid_samples->undecided;
     ambiguous += solid_samples->ambiguous;
@@ -329,8 +326,8 @@ Result<Voxelization> voxelize(const TriangleMesh& input, const VoxelizeOptions& 
   const double ambiguous_cells = ambiguous / samples_per_cell;
   if (ambiguous_cells > kMaxAmbiguousFraction * (surface_cells + ambiguous_cells)) {
     std::ostringstream out;
-    out << "the inside test cannot decide: " << ambiguous << " samples have a winding number between "
-        << kAmbiguousBand << " and " << 1.0 - kAmbiguousBand << " (against " << surface_cells
+    out << "the inside test cannot decide: " << ambiguous << " samples have a winding number between " << kAmbiguousBand
+        << " and " << 1.0 - kAmbiguousBand << " (against " << surface_cells
         << " cells on the body's surface); the surface has " << result.surface.open_edges
         << " open edges: close its holes";
     return Status::error(out.str());

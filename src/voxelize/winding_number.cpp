@@ -8,7 +8,8 @@
 
 namespace cubespring::voxelize_detail {
 
-double winding_number(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const Eigen::Vector3d& point) {
+double winding_number(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,
+                      const Eigen::Vector3d& point) {
   // the solid angle of each triangle by Van Oosterom and Strackee (1983):
   // tan(omega / 2) = a . (b x c) / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|)
   double total = 0.0;

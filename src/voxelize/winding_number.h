@@ -7,10 +7,10 @@
 
 #include <Eigen/Core>
 
-
 namespace cubespring::voxelize_detail {
 
 /// Winding number of the triangles (3 x count vertex indices) at a point.
-double winding_number(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const Eigen::Vector3d& point);
+double winding_number(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles,
+                      const Eigen::Vector3d& point);
 
 }  // namespace cubespring::voxelize_detail

@@ -17,8 +17,7 @@ namespace cubespring::test {
 class BulletScene {
  public:
   explicit BulletScene(const Eigen::Vector3d& gravity = Eigen::Vector3d(0, 0, -9.81))
-      : dispatcher_(&configuration_),
-        world_(&dispatcher_, &broadphase_, &solver_, &configuration_) {
+      : dispatcher_(&configuration_), world_(&dispatcher_, &broadphase_, &solver_, &configuration_) {
     world_.setGravity(btVector3(static_cast<btScalar>(gravity.x()), static_cast<btScalar>(gravity.y()),
                                 static_cast<btScalar>(gravity.z())));
   }
@@ -50,7 +49,8 @@ class BulletScene {
 
   /// The static plane z = height, normal +z.
   btRigidBody* add_floor(double height = 0.0) {
-    return add_rigid(new btStaticPlaneShape(btVector3(0, 0, 1), static_cast<btScalar>(height)), 0.0, btTransform::getIdentity());
+    return add_rigid(new btStaticPlaneShape(btVector3(0, 0, 1), static_cast<btScalar>(height)), 0.0,
+                     btTransform::getIdentity());
   }
 
   bullet::SoftBody* add_soft(const bullet::SoftBodySettings& settings) {
@@ -85,7 +85,8 @@ inline btTransform at(double x, double y, double z) {
 }
 
 /// A block of cells of size h [m] from z = base up, centred on x = y = 0.
-inline bullet::SoftBodySettings block(const Eigen::Vector3i& cells, double h, const Material& material, double base = 0.0) {
+inline bullet::SoftBodySettings block(const Eigen::Vector3i& cells, double h, const Material& material,
+                                      double base = 0.0) {
   bullet::SoftBodySettings settings;
   settings.lattice = box_lattice(cells, Eigen::Vector3d::Constant(h), material);
   settings.lattice.origin = Eigen::Vector3d(-0.5 * cells.x() * h, -0.5 * cells.y() * h, base);

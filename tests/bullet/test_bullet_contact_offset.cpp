@@ -70,14 +70,15 @@ TEST_P(OffsetAtScale, BlockRestsOffsetAboveTheGroundWhichCarriesItsWeight) {
   EXPECT_EQ(on_skin, 25) << ground.name << ", h = " << h;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    MillimetreToMetre, OffsetAtScale,
-    ::testing::Combine(::testing::Values(0.001, 0.01, 1.0),
-                       ::testing::Values(Ground{"plane", false}, Ground{"triangle_mesh", true})),
-    [](const ::testing::TestParamInfo<std::tuple<double, Ground>>& param) {
-      const double h = std::get<0>(param.param);
-      return std::string(std::get<1>(param.param).name) + (h < 0.005 ? "_1mm" : h < 0.5 ? "_1cm" : "_1m");
-    });
+INSTANTIATE_TEST_SUITE_P(MillimetreToMetre, OffsetAtScale,
+                         ::testing::Combine(::testing::Values(0.001, 0.01, 1.0),
+                                            ::testing::Values(Ground{"plane", false}, Ground{"triangle_mesh", true})),
+                         [](const ::testing::TestParamInfo<std::tuple<double, Ground>>& param) {
+                           const double h = std::get<0>(param.param);
+                           return std::string(std::get<1>(param.param).name) + (h < 0.005 ? "_1mm"
+                                                                                : h < 0.5 ? "_1cm"
+                                                                                          : "_1m");
+                         });
 
 TEST(ContactOffset, DroppedBoxRestsOffsetAboveTheSlabCarriedByItsContactForce) {
   constexpr double kCell = 0.01;
@@ -107,14 +108,16 @@ TEST(ContactOffset, DroppedBoxRestsOffsetAboveTheSlabCarriedByItsContactForce) {
     if (std::abs(x(0, n)) < 0.01 && std::abs(x(1, n)) < 0.01) top = std::max(top, x(2, n));
   }
   // (to 0.2% of a cell: the box moves on after the sub-step that projected the nodes)
-  EXPECT_NEAR(bottom - top, offset, 0.002 * kCell) << "box bottom " << bottom << " m, slab top under it " << top << " m";
+  EXPECT_NEAR(bottom - top, offset, 0.002 * kCell)
+      << "box bottom " << bottom << " m, slab top under it " << top << " m";
 }
 
 TEST(ContactOffset, NegativeOrNotFiniteLengthsAreRefusedByName) {
   const struct {
     double offset, max_depth;
     const char* named;
-  } cases[] = {{-0.001, 0.0, "contact offset"}, {std::nan(""), 0.0, "contact offset"}, {0.0, -1.0, "contact max_depth"}};
+  } cases[] = {
+      {-0.001, 0.0, "contact offset"}, {std::nan(""), 0.0, "contact offset"}, {0.0, -1.0, "contact max_depth"}};
   for (const auto& c : cases) {
     bullet::SoftBodySettings settings = block({2, 2, 2}, 0.01, tissue_at_scale(0.01));
     settings.contact.offset = c.offset;

@@ -9,8 +9,8 @@
 
 #include <BulletCollision/CollisionShapes/btTriangleMesh.h>
 #include <BulletCollision/CollisionShapes/btUniformScalingShape.h>
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "bullet_scene.h"
 #include "cubespring/forces.h"
@@ -55,14 +55,16 @@ std::vector<ShapeCase> shape_cases() {
   return {
       // between 4 vertices 0.5 * sqrt(2) cells away, and between 2 rows half a cell away
       {"sphere", [] { return new btSphereShape(0.012f); }, 0.012, 0.012 - std::sqrt(0.012 * 0.012 - 0.5 * 0.01 * 0.01)},
-      {"capsule", [] { return new btCapsuleShapeX(0.006f, 0.02f); }, 0.006, 0.006 - std::sqrt(0.006 * 0.006 - 0.005 * 0.005)},
+      {"capsule", [] { return new btCapsuleShapeX(0.006f, 0.02f); }, 0.006,
+       0.006 - std::sqrt(0.006 * 0.006 - 0.005 * 0.005)},
       {"cylinder", [] { return new btCylinderShapeZ(btVector3(0.012f, 0.012f, 0.005f)); }, 0.005},
       {"convex hull",
        [] {
          auto* hull = new btConvexHullShape();
          hull->setMargin(0.0005f);  // Bullet's default 4 cm margin would hold it off the floor
          for (int c = 0; c < 8; ++c) {
-           hull->addPoint(btVector3((c & 1) ? 0.012f : -0.012f, (c & 2) ? 0.012f : -0.012f, (c & 4) ? 0.005f : -0.005f));
+           hull->addPoint(
+               btVector3((c & 1) ? 0.012f : -0.012f, (c & 2) ? 0.012f : -0.012f, (c & 4) ? 0.005f : -0.005f));
          }
          return hull;
        },
@@ -126,7 +128,8 @@ TEST_P(DroppedShape, ComesToRestOnTheTissueCarriedByItsContactForce) {
 INSTANTIATE_TEST_SUITE_P(EveryConvexShape, DroppedShape, ::testing::Range(0, static_cast<int>(shape_cases().size())),
                          [](const ::testing::TestParamInfo<int>& param) {
                            std::string name = shape_cases()[static_cast<std::size_t>(param.param)].name;
-                           for (char& c : name) if (c == ' ' || c == '-') c = '_';
+                           for (char& c : name)
+                             if (c == ' ' || c == '-') c = '_';
                            return name;
                          });
 
@@ -155,7 +158,8 @@ double slide_distance(double tan_theta, double friction) {
   settings.contact.friction = friction;
   bullet::SoftBody* soft = scene.add_soft(settings);
   EXPECT_NE(soft, nullptr);
-  EXPECT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  EXPECT_TRUE(
+      soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
   btRigidBody* box = scene.add_rigid(new btBoxShape(btVector3(0.015f, 0.015f, 0.005f)), 0.02, at(-0.01, 0, 0.0251));
   scene.run(0.3);
   const double start = static_cast<double>(box->getWorldTransform().getOrigin().x());
@@ -187,7 +191,8 @@ Slide slide_after_tilting(double tan_theta, double friction, double seconds) {
   settings.contact.friction = friction;
   bullet::SoftBody* soft = scene.add_soft(settings);
   EXPECT_NE(soft, nullptr);
-  EXPECT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  EXPECT_TRUE(
+      soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
   btRigidBody* box = scene.add_rigid(new btBoxShape(btVector3(0.015f, 0.015f, 0.005f)), 0.02, at(-0.08, 0, 0.0251));
   scene.run(0.3);
   scene.world().setGravity(gravity(tan_theta));  // the world passes it on to the box
@@ -239,7 +244,8 @@ TEST(BulletContacts, BlockHangingFromASwingingDynamicBodyStaysStable) {
   const auto energy = [&] {
     const Eigen::Vector3d g(0, 0, -9.81);
     double e = kinetic_energy(soft->model(), soft->state()) + elastic_energy(soft->model(), soft->state().positions);
-    for (int n = 0; n < soft->model().num_nodes(); ++n) e -= soft->model().mass[n] * g.dot(soft->state().positions.col(n));
+    for (int n = 0; n < soft->model().num_nodes(); ++n)
+      e -= soft->model().mass[n] * g.dot(soft->state().positions.col(n));
     const double v = static_cast<double>(carrier->getLinearVelocity().length());
     e += 0.5 * 0.1 * v * v + 0.1 * 9.81 * static_cast<double>(carrier->getWorldTransform().getOrigin().z());
     return e;
@@ -256,11 +262,15 @@ TEST(BulletContacts, BlockHangingFromASwingingDynamicBodyStaysStable) {
   // Bullet's 1/60 s step (docs/bullet-plugin.md section 5)
   const bullet::Anchor& held = *soft->anchors()[static_cast<std::size_t>(*anchor)];
   for (std::size_t i = 0; i < held.nodes.size(); ++i) {
-    const btVector3 target = carrier->getWorldTransform() * btVector3(static_cast<btScalar>(held.local(0, static_cast<Eigen::Index>(i))),
-                                                                      static_cast<btScalar>(held.local(1, static_cast<Eigen::Index>(i))),
-                                                                      static_cast<btScalar>(held.local(2, static_cast<Eigen::Index>(i))));
+    const btVector3 target =
+        carrier->getWorldTransform() * btVector3(static_cast<btScalar>(held.local(0, static_cast<Eigen::Index>(i))),
+                                                 static_cast<btScalar>(held.local(1, static_cast<Eigen::Index>(i))),
+                                                 static_cast<btScalar>(held.local(2, static_cast<Eigen::Index>(i))));
     const Eigen::Vector3d x = soft->state().positions.col(held.nodes[i]);
-    EXPECT_LT((x - Eigen::Vector3d(static_cast<double>(target.x()), static_cast<double>(target.y()), static_cast<double>(target.z()))).norm(), 0.5 * kCell);
+    EXPECT_LT((x - Eigen::Vector3d(static_cast<double>(target.x()), static_cast<double>(target.y()),
+                                   static_cast<double>(target.z())))
+                  .norm(),
+              0.5 * kCell);
   }
   scene.world().removeConstraint(&pivot);
 }
@@ -281,11 +291,13 @@ double deepest_sweep_penetration(bool face_contacts) {
   settings.contact.face_contacts = face_contacts;
   bullet::SoftBody* soft = scene.add_soft(settings);
   EXPECT_NE(soft, nullptr);
-  EXPECT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  EXPECT_TRUE(
+      soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
   const double radius = 0.25 * kCell;
   const double half_height = 0.01;
-  btRigidBody* tool = scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(radius), static_cast<btScalar>(2 * half_height)),
-                                      0.0, at(-0.055, 0.0012, 0.03 + radius + half_height), true);
+  btRigidBody* tool =
+      scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(radius), static_cast<btScalar>(2 * half_height)), 0.0,
+                      at(-0.055, 0.0012, 0.03 + radius + half_height), true);
   const double top = 3 * kCell;
   const double step = 1e-3;
   double deepest = 0.0;

@@ -41,11 +41,12 @@ TEST(BulletIndentation, SphereForceFollowsHertzOnABondedLayerWithinTenPercent) {
   settings.contact.friction = 0.0;  // Hertz's contact is frictionless
   bullet::SoftBody* soft = scene.add_soft(settings);
   ASSERT_NE(soft, nullptr);
-  ASSERT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  ASSERT_TRUE(
+      soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
   const double top = cells.z() * h;
   // centred over a node, so that the first contact is one vertex
-  btRigidBody* indenter = scene.add_rigid(new btSphereShape(static_cast<btScalar>(radius)), 0.0,
-                                          test::at(0, 0, top + radius), true);
+  btRigidBody* indenter =
+      scene.add_rigid(new btSphereShape(static_cast<btScalar>(radius)), 0.0, test::at(0, 0, top + radius), true);
   const double step = 1.0 / 600.0;
   const double press_time = 1.2;
   const double deepest = 0.2 * radius;

@@ -66,11 +66,12 @@ TEST(BulletIndentationFem, SphereForceIsWithinTenPercentOfCalculixAtTwoFiveAndTe
   settings.contact.friction = 0.0;  // the reference's contact is frictionless
   bullet::SoftBody* soft = scene.add_soft(settings);
   ASSERT_NE(soft, nullptr);
-  ASSERT_TRUE(soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
+  ASSERT_TRUE(
+      soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
   const double top = cells.z() * h;
   const double radius = validation::kIndentationRadius;
-  btRigidBody* sphere = scene.add_rigid(new btSphereShape(static_cast<btScalar>(radius)), 0.0,
-                                        test::at(0, 0, top + radius), true);
+  btRigidBody* sphere =
+      scene.add_rigid(new btSphereShape(static_cast<btScalar>(radius)), 0.0, test::at(0, 0, top + radius), true);
 
   const double step = 1e-3;
   const double speed = 0.01;  // [m/s]
@@ -93,8 +94,10 @@ TEST(BulletIndentationFem, SphereForceIsWithinTenPercentOfCalculixAtTwoFiveAndTe
       scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
       ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
       const double now = scene.world().getContactWrench(sphere).force.z();  // the tissue pushes it up
-      if (i >= hold_steps - window) force += now / window;
-      else if (i >= hold_steps - 2 * window) before += now / window;
+      if (i >= hold_steps - window)
+        force += now / window;
+      else if (i >= hold_steps - 2 * window)
+        before += now / window;
     }
     std::printf("depth %.1f mm: lattice %.4f N (%.4f N 0.1 s before), CalculiX %.4f N (mesh level %d), ratio %.3f\n",
                 1e3 * row.depth, force, before, row.force, row.mesh_level, force / row.force);

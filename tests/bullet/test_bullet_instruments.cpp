@@ -49,7 +49,8 @@ double run_watching_the_cells(test::BulletScene& scene, const bullet::SoftBody& 
     EXPECT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
     if (!scene.world().getSoftBodyError().empty()) return 0.0;
     for (int c = 0; c < soft.model().num_cells(); ++c) {
-      least = std::min(least, cell_signed_volume(soft.model(), soft.state().positions, c) / soft.model().cell_size.prod());
+      least =
+          std::min(least, cell_signed_volume(soft.model(), soft.state().positions, c) / soft.model().cell_size.prod());
     }
   }
   return least;
@@ -84,11 +85,13 @@ TEST_P(InstrumentOnTissue, ComesToRestCarriedByTheTissue) {
   const double weight = mass * 9.81;
   const double carried = scene.world().getContactWrench(box).force.z();
   const double sunk = 0.05 - (box->getCenterOfMassPosition().z() - half);
-  const double tissue_speed = std::sqrt(2.0 * kinetic_energy(soft->model(), soft->state()) / soft->model().total_mass());
-  std::printf("%.0f g at %.4f s steps: sunk %.1f mm, speed %.2e m/s over the last 0.5 s (Bullet reads %.2e), spin %.2e rad/s, "
-              "carried %.4f N for a weight of %.4f N, tissue %.2e m/s\n",
-              1e3 * mass, GetParam().step, 1e3 * sunk, speed, double(box->getLinearVelocity().length()),
-              double(box->getAngularVelocity().length()), carried, weight, tissue_speed);
+  const double tissue_speed =
+      std::sqrt(2.0 * kinetic_energy(soft->model(), soft->state()) / soft->model().total_mass());
+  std::printf(
+      "%.0f g at %.4f s steps: sunk %.1f mm, speed %.2e m/s over the last 0.5 s (Bullet reads %.2e), spin %.2e rad/s, "
+      "carried %.4f N for a weight of %.4f N, tissue %.2e m/s\n",
+      1e3 * mass, GetParam().step, 1e3 * sunk, speed, double(box->getLinearVelocity().length()),
+      double(box->getAngularVelocity().length()), carried, weight, tissue_speed);
   EXPECT_LT(speed, 1e-3);
   EXPECT_LT((box->getLinearVelocity() - last_step_motion).length(), 1e-4) << "Bullet reads the velocity it moved at";
   EXPECT_LT(box->getLinearVelocity().length(), 1e-3);
@@ -149,9 +152,10 @@ TEST_P(InstrumentOnSlipperyTissue, RestsOnTheTissueWithoutCuttingIn) {
   const double weight = mass * 9.81;
   const double carried = scene.world().getContactWrench(box).force.z();
   const double sunk = 0.05 - (box->getCenterOfMassPosition().z() - kHalf);
-  std::printf("mu = %.2f at %.4f s steps: sunk %.1f mm, speed %.2e m/s over the last 0.5 s, carried %.4f N for a weight "
-              "of %.4f N, least cell volume ratio %.3f\n",
-              GetParam().friction, step, 1e3 * sunk, speed, carried, weight, least);
+  std::printf(
+      "mu = %.2f at %.4f s steps: sunk %.1f mm, speed %.2e m/s over the last 0.5 s, carried %.4f N for a weight "
+      "of %.4f N, least cell volume ratio %.3f\n",
+      GetParam().friction, step, 1e3 * sunk, speed, carried, weight, least);
   EXPECT_LT(sunk, kHalf) << "the tissue carries it, it does not cut in";
   EXPECT_GT(least, 0.5) << "no cell crushed under an edge";
   EXPECT_NEAR(carried, weight, 0.02 * weight);
@@ -190,7 +194,8 @@ TEST_P(TippingInstrument, NeverTurnsACellInsideOut) {
 }
 
 INSTANTIATE_TEST_SUITE_P(HeavyInstruments, TippingInstrument,
-                         ::testing::Values(OffsetDrop{1e-7, 1.0 / 60}, OffsetDrop{3e-4, 1.0 / 60}, OffsetDrop{1e-5, 1e-3}),
+                         ::testing::Values(OffsetDrop{1e-7, 1.0 / 60}, OffsetDrop{3e-4, 1.0 / 60},
+                                           OffsetDrop{1e-5, 1e-3}),
                          [](const ::testing::TestParamInfo<OffsetDrop>& drop) {
                            return "plus_" + std::to_string(std::lround(1e9 * drop.param.extra_height)) + "nm_" +
                                   (drop.param.step < 0.01 ? "1ms" : "60Hz");

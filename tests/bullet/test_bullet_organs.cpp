@@ -15,8 +15,8 @@
 #include <filesystem>
 #include <string>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "bullet_scene.h"
 #include "cubespring/forces.h"
@@ -35,11 +35,11 @@ struct Organ {
 };
 
 struct Settled {
-  double volume;      // of the lattice, deformed over rest
-  double least_cell;  // the least cell volume over its rest volume
-  double rms_speed;   // mass-weighted [m/s]
-  double table_force; // upward [N]
-  double weight;      // [N]
+  double volume;       // of the lattice, deformed over rest
+  double least_cell;   // the least cell volume over its rest volume
+  double rms_speed;    // mass-weighted [m/s]
+  double table_force;  // upward [N]
+  double weight;       // [N]
 };
 
 // The organ, its lowest point on the table top z = 0, settled for `seconds`; nothing if it failed.
@@ -90,10 +90,11 @@ std::optional<Settled> settle_on_table(const Organ& organ, double seconds) {
   settled.rms_speed = std::sqrt(2.0 * kinetic_energy(model, soft->state()) / model.total_mass());
   settled.table_force = -scene.world().getContactWrench(table).force.z();
   settled.weight = model.total_mass() * 9.81;
-  std::printf("%s on %g mm cells: %d cells, volume %.4f of rest, least cell %.3f, rms speed %.2e m/s, table %.4f N "
-              "for a weight of %.4f N\n",
-              organ.file, 1e3 * organ.cell_size, model.num_cells(), settled.volume, settled.least_cell, settled.rms_speed,
-              settled.table_force, settled.weight);
+  std::printf(
+      "%s on %g mm cells: %d cells, volume %.4f of rest, least cell %.3f, rms speed %.2e m/s, table %.4f N "
+      "for a weight of %.4f N\n",
+      organ.file, 1e3 * organ.cell_size, model.num_cells(), settled.volume, settled.least_cell, settled.rms_speed,
+      settled.table_force, settled.weight);
   return settled;
 }
 

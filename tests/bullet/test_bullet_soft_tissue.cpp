@@ -5,15 +5,15 @@
 // the plugin's default neo-Hookean law) with a visual surface twice as fine as its cells, on a
 // static plane, for 3 s at Bullet's 1/60 s steps. It must settle: no blow-up, no crushed cell,
 // its volume kept, the ground carrying its weight. (Label slow: seconds in a release build.)
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <optional>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "bullet_scene.h"
 
@@ -86,7 +86,7 @@ bullet::SoftBodySettings tissue_cube(double young_modulus, int cells, int square
 TEST(SoftTissue, BoxSurfaceIsClosedAndOutward) {
   const TriangleMesh mesh = box_surface(0.06, 6);
   EXPECT_EQ(mesh.num_vertices(), 6 * 6 * 6 + 2);  // (n+1)^3 - (n-1)^3
-  double volume = 0.0;  // the divergence theorem: outward triangles give the box's volume
+  double volume = 0.0;                            // the divergence theorem: outward triangles give the box's volume
   for (int t = 0; t < mesh.num_triangles(); ++t) {
     const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t));
     const Eigen::Vector3d b = mesh.vertices.col(mesh.triangles(1, t));
@@ -117,9 +117,10 @@ TEST(SoftTissue, CubeOnTheGroundSettlesKeepingItsVolume) {
     const double weight = model.total_mass() * 9.81;
     const double ground = -scene.world().getContactWrench(floor).force.z();
     const double top = soft->state().positions(2, model.node_at({7, 7, 15}));
-    std::printf("E = %g Pa: top centre %.2f mm (rest 120), volume %.4f of rest, least cell J %.3f, rms speed %.2e m/s, "
-                "ground %.4f N for a weight of %.4f N\n",
-                young_modulus, 1e3 * top, volume, least, rms_speed, ground, weight);
+    std::printf(
+        "E = %g Pa: top centre %.2f mm (rest 120), volume %.4f of rest, least cell J %.3f, rms speed %.2e m/s, "
+        "ground %.4f N for a weight of %.4f N\n",
+        young_modulus, 1e3 * top, volume, least, rms_speed, ground, weight);
     EXPECT_GT(least, 0.5);
     EXPECT_NEAR(volume, 1.0, 0.03);
     EXPECT_LT(rms_speed, 1e-3) << "at rest (4e-3 m/s when a contact pass took the mean of its points' corrections)";
@@ -144,14 +145,16 @@ TEST(SoftTissue, CubeWithACoarseSurfaceRestsOnTheGround) {
   double lowest_node = 1e300;
   for (int n = 0; n < model.num_nodes(); ++n) lowest_node = std::min(lowest_node, soft->state().positions(2, n));
   double lowest_vertex = 1e300;
-  for (int v = 0; v < soft->surface_vertices().cols(); ++v) lowest_vertex = std::min(lowest_vertex, soft->surface_vertices()(2, v));
+  for (int v = 0; v < soft->surface_vertices().cols(); ++v)
+    lowest_vertex = std::min(lowest_vertex, soft->surface_vertices()(2, v));
   const double rms_speed = std::sqrt(2.0 * kinetic_energy(model, soft->state()) / model.total_mass());
   const double weight = model.total_mass() * 9.81;
   const double ground = -scene.world().getContactWrench(floor).force.z();
-  std::printf("8-vertex surface: %d contact vertices, lowest node %.3f mm, lowest contact vertex %.4f mm, rms speed %.2e m/s, "
-              "ground %.4f N for a weight of %.4f N\n",
-              static_cast<int>(soft->surface_vertices().cols()), 1e3 * lowest_node, 1e3 * lowest_vertex, rms_speed, ground,
-              weight);
+  std::printf(
+      "8-vertex surface: %d contact vertices, lowest node %.3f mm, lowest contact vertex %.4f mm, rms speed %.2e m/s, "
+      "ground %.4f N for a weight of %.4f N\n",
+      static_cast<int>(soft->surface_vertices().cols()), 1e3 * lowest_node, 1e3 * lowest_vertex, rms_speed, ground,
+      weight);
   EXPECT_GT(lowest_node, -0.1 * 0.008) << "no cell sinks through the ground (3.3 mm with contact points every 2 cells)";
   EXPECT_GT(lowest_vertex, -1e-5);
   EXPECT_LT(rms_speed, 1e-3);
@@ -159,8 +162,8 @@ TEST(SoftTissue, CubeWithACoarseSurfaceRestsOnTheGround) {
 }
 
 // Where a ray from `from` along `direction` first meets the body's surface [m], if within `length`.
-double surface_distance_along(const bullet::SoftBody& soft, const Eigen::Vector3d& from, const Eigen::Vector3d& direction,
-                              double length) {
+double surface_distance_along(const bullet::SoftBody& soft, const Eigen::Vector3d& from,
+                              const Eigen::Vector3d& direction, double length) {
   const std::optional<bullet::SoftBody::RayHit> hit = soft.ray_test(from, from + length * direction.normalized());
   return hit ? hit->fraction * length : std::numeric_limits<double>::infinity();
 }
@@ -194,9 +197,9 @@ TEST(SoftTissue, AProbeThinnerThanTheSurfaceTrianglesNeverSlipsInside) {
   };
   // it starts where it touches: the world meets rigid bodies that start a step near the tissue
   const Eigen::Vector3d start = tip_centre(0.0);
-  btRigidBody* probe = scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(radius),
-                                                           static_cast<btScalar>(length - 2 * radius)),
-                                       0.0, test::at(start.x(), start.y(), start.z() + 0.5 * length - radius), true);
+  btRigidBody* probe =
+      scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(radius), static_cast<btScalar>(length - 2 * radius)),
+                      0.0, test::at(start.x(), start.y(), start.z() + 0.5 * length - radius), true);
   const double step = 1.0 / 60.0;
   const double allowed = std::max(0.5e-3, 0.1 * radius);
   std::vector<Eigen::Vector3d> directions;
@@ -219,7 +222,8 @@ TEST(SoftTissue, AProbeThinnerThanTheSurfaceTrianglesNeverSlipsInside) {
     for (const Eigen::Vector3d& d : directions) {
       deepest = std::max(deepest, radius - surface_distance_along(*soft, centre, d, 2 * radius));
       if (d.z() == 0.0) {
-        deepest = std::max(deepest, radius - surface_distance_along(*soft, centre + Eigen::Vector3d(0, 0, 0.01), d, 2 * radius));
+        deepest = std::max(deepest,
+                           radius - surface_distance_along(*soft, centre + Eigen::Vector3d(0, 0, 0.01), d, 2 * radius));
       }
     }
     const bullet::ContactWrench wrench = scene.world().getContactWrench(probe);
@@ -229,9 +233,10 @@ TEST(SoftTissue, AProbeThinnerThanTheSurfaceTrianglesNeverSlipsInside) {
     if (t > 0.75) least_drag_force = std::min(least_drag_force, force);
     previous_force = force;
   }
-  std::printf("probe: the surface reaches %.3f mm into it at most (the plugin reports %.3f mm); %d steps lost half "
-              "the force; the drag's least force %.3f N, last %.3f N\n",
-              1e3 * deepest, 1e3 * deepest_reported, drops, least_drag_force, previous_force);
+  std::printf(
+      "probe: the surface reaches %.3f mm into it at most (the plugin reports %.3f mm); %d steps lost half "
+      "the force; the drag's least force %.3f N, last %.3f N\n",
+      1e3 * deepest, 1e3 * deepest_reported, drops, least_drag_force, previous_force);
   EXPECT_LT(deepest, allowed);
   EXPECT_LT(deepest_reported, allowed);
   EXPECT_NEAR(deepest_reported, deepest, 0.2e-3) << "the reported penetration is the one the rays see";

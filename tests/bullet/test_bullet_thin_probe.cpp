@@ -22,11 +22,11 @@ namespace cubespring {
 namespace {
 
 struct ThinProbeCase {
-  double radius;  // [m]
-  double step;    // Bullet's [s]
-  int length = 22;      // the block's cells along the drag (11 across it, 11 high)
+  double radius;    // [m]
+  double step;      // Bullet's [s]
+  int length = 22;  // the block's cells along the drag (11 across it, 11 high)
   int height = 11;
-  double drag = 0.03;   // [m]
+  double drag = 0.03;  // [m]
 };
 
 class ThinProbe : public ::testing::TestWithParam<ThinProbeCase> {};
@@ -82,8 +82,8 @@ TEST_P(ThinProbe, DraggedFastThroughCellsOfItsOwnSizeItStaysOutOfTheTissue) {
     const Eigen::Vector3d tip = tip_centre(t);
     return test::at(tip.x(), tip.y(), tip.z() + 0.5 * length - r);
   };
-  btRigidBody* probe =
-      scene.add_rigid(new btCapsuleShapeZ(static_cast<btScalar>(r), static_cast<btScalar>(length - 2 * r)), 0.0, place(0.0), true);
+  btRigidBody* probe = scene.add_rigid(
+      new btCapsuleShapeZ(static_cast<btScalar>(r), static_cast<btScalar>(length - 2 * r)), 0.0, place(0.0), true);
   double deepest = 0.0, least_drag_force = std::numeric_limits<double>::infinity();
   const int steps = static_cast<int>(std::lround((press + c.drag / speed) / c.step));
   for (int n = 1; n <= steps; ++n) {
@@ -93,10 +93,12 @@ TEST_P(ThinProbe, DraggedFastThroughCellsOfItsOwnSizeItStaysOutOfTheTissue) {
     ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << "t = " << t << " s: " << scene.world().getSoftBodyError();
     const Eigen::Vector3d tip = tip_centre(t);
     deepest = std::max(deepest, intrusion(*soft, tip, tip + Eigen::Vector3d(0, 0, length - 2 * r), r));
-    if (t > press + 0.05) least_drag_force = std::min(least_drag_force, scene.world().getContactWrench(probe).force.norm());
+    if (t > press + 0.05)
+      least_drag_force = std::min(least_drag_force, scene.world().getContactWrench(probe).force.norm());
   }
-  std::printf("%.1f mm probe at %.1f ms steps: the surface reaches %.3f mm into it at most; the drag's least force %.3f N\n",
-              1e3 * r, 1e3 * c.step, 1e3 * deepest, least_drag_force);
+  std::printf(
+      "%.1f mm probe at %.1f ms steps: the surface reaches %.3f mm into it at most; the drag's least force %.3f N\n",
+      1e3 * r, 1e3 * c.step, 1e3 * deepest, least_drag_force);
   EXPECT_LT(deepest, std::max(0.5e-3, 0.1 * r)) << "the contact issue's bound";
   EXPECT_GT(least_drag_force, 0.05) << "1 cm deep in the tissue, the probe always feels it";
 }
@@ -109,9 +111,11 @@ INSTANTIATE_TEST_SUITE_P(AtTheContactIssuesFastestSpeed, ThinProbe,
                                            ThinProbeCase{0.0025, 0.001}, ThinProbeCase{0.0025, 1.0 / 60},
                                            ThinProbeCase{0.001, 0.001, 37, 19, 0.04}),
                          [](const ::testing::TestParamInfo<ThinProbeCase>& instance) {
-                           return "radius_" + std::to_string(static_cast<int>(std::lround(instance.param.radius * 1e5))) +
-                                  "_hundredths_mm_step_" + std::to_string(static_cast<int>(std::lround(instance.param.step * 1e3))) +
-                                  "_ms_" + std::to_string(instance.param.length) + "_cells_long";
+                           return "radius_" +
+                                  std::to_string(static_cast<int>(std::lround(instance.param.radius * 1e5))) +
+                                  "_hundredths_mm_step_" +
+                                  std::to_string(static_cast<int>(std::lround(instance.param.step * 1e3))) + "_ms_" +
+                                  std::to_string(instance.param.length) + "_cells_long";
                          });
 
 }  // namespace

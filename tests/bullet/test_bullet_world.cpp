@@ -150,10 +150,12 @@ TEST(BulletWorld, MomentumIsExchangedNotMadeWhenASphereHitsAFreeBlock) {
   scene.run(0.2, 1.0 / 240.0);
   ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
   Eigen::Vector3d soft_momentum = Eigen::Vector3d::Zero();
-  for (int n = 0; n < soft->model().num_nodes(); ++n) soft_momentum += soft->model().mass[n] * soft->state().velocities.col(n);
+  for (int n = 0; n < soft->model().num_nodes(); ++n)
+    soft_momentum += soft->model().mass[n] * soft->state().velocities.col(n);
   const btVector3 v = sphere->getLinearVelocity();
   const Eigen::Vector3d after =
-      soft_momentum + sphere_mass * Eigen::Vector3d(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
+      soft_momentum +
+      sphere_mass * Eigen::Vector3d(static_cast<double>(v.x()), static_cast<double>(v.y()), static_cast<double>(v.z()));
   EXPECT_GT(soft_momentum.x(), 0.2 * before.x());  // the hit happened
   EXPECT_LT((after - before).norm(), 0.01 * before.norm()) << "after " << after.transpose();
 }
@@ -290,8 +292,8 @@ std::pair<State, Eigen::Matrix3Xd> dragged_sphere(int calls, int internal_steps)
   bullet::SoftBody* soft = scene.add_soft(block({4, 4, 2}, kCell, tissue()));
   EXPECT_NE(soft, nullptr);
   const double radius = 0.01;
-  btRigidBody* sphere = scene.add_rigid(new btSphereShape(static_cast<btScalar>(radius)), 0.0,
-                                        at(-0.01, 0, 0.02 + radius), true);
+  btRigidBody* sphere =
+      scene.add_rigid(new btSphereShape(static_cast<btScalar>(radius)), 0.0, at(-0.01, 0, 0.02 + radius), true);
   const double internal = 1.0 / 256.0;  // exact in float: Bullet counts its internal steps in float
   const double call = internal_steps * internal;
   const Eigen::Vector3d velocity(0.15, 0.0, -0.06);  // [m/s]: 2.8 mm deep and 7 mm along in 47 ms

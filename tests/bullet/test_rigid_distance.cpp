@@ -37,7 +37,8 @@ TEST(RigidDistance, ASideWallGrazingATableLeavesThroughItsTop) {
   const btBoxShape table = table_shape();
   const Eigen::Vector3d point(-0.08, 0.05, -5e-5);
   const Eigen::Vector3d wall_normal = Eigen::Vector3d(0.763, -0.636, 0.115).normalized();
-  expect_near(penetration_push(table, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
+  expect_near(penetration_push(table, table_place(), point, wall_normal, projector_reach()),
+              Eigen::Vector3d(0, 0, 5e-5));
 }
 
 TEST(RigidDistance, AnEdgePressedIntoTheTissueLeavesThroughThePressingFace) {
@@ -72,13 +73,15 @@ TEST(RigidDistance, ACylinderAndAHullFollowTheSameRule) {
   const Eigen::Vector3d point(-0.08, 0.05, -5e-5);
   const Eigen::Vector3d wall_normal = Eigen::Vector3d(0.763, -0.636, 0.115).normalized();
   const btCylinderShapeZ cylinder(btVector3(0.25f, 0.25f, 0.01f));
-  expect_near(penetration_push(cylinder, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
+  expect_near(penetration_push(cylinder, table_place(), point, wall_normal, projector_reach()),
+              Eigen::Vector3d(0, 0, 5e-5));
   btConvexHullShape hull;
   for (int corner = 0; corner < 8; ++corner) {
     hull.addPoint(btVector3(corner & 1 ? 0.25f : -0.25f, corner & 2 ? 0.25f : -0.25f, corner & 4 ? 0.01f : -0.01f));
   }
   hull.setMargin(0);
-  expect_near(penetration_push(hull, table_place(), point, wall_normal, projector_reach()), Eigen::Vector3d(0, 0, 5e-5));
+  expect_near(penetration_push(hull, table_place(), point, wall_normal, projector_reach()),
+              Eigen::Vector3d(0, 0, 5e-5));
 }
 
 // A triangle of tissue wrapped over the top front edge of a 2 cm box (the edge along x at
@@ -117,8 +120,8 @@ TEST(RigidDistance, ABoxEdgeThroughATriangleBetweenItsCornersPushesItByTheEdgesD
   EXPECT_NEAR(through->depth, 0.001, 1e-9);
   EXPECT_NEAR(through->barycentric.sum(), 1.0, 1e-12);
   EXPECT_TRUE((through->barycentric.array() >= -1e-12).all()) << through->barycentric.transpose();
-  const Eigen::Vector3d foot = through->barycentric[0] * poked.a + through->barycentric[1] * poked.b +
-                               through->barycentric[2] * poked.c;
+  const Eigen::Vector3d foot =
+      through->barycentric[0] * poked.a + through->barycentric[1] * poked.b + through->barycentric[2] * poked.c;
   const Eigen::Vector3d on_edge = foot + 0.001 * Eigen::Vector3d(0, 1, 1).normalized();
   EXPECT_NEAR(on_edge.y(), kBoxHalf, 1e-9);
   EXPECT_NEAR(on_edge.z(), kBoxHalf, 1e-9);
@@ -150,12 +153,14 @@ TEST(RigidDistance, AnEdgeAcrossTheTrianglesPlaneIsClippedToItsPrism) {
   std::optional<FacePenetration> through = hit({-0.5, 0.25, 0.05}, {0.5, 0.25, -0.05});
   ASSERT_TRUE(through.has_value());
   EXPECT_NEAR(through->depth, 0.05 * s, 1e-12);
-  EXPECT_TRUE(through->barycentric.isApprox(Eigen::Vector3d(0.25, 0.5, 0.25), 1e-9)) << through->barycentric.transpose();
+  EXPECT_TRUE(through->barycentric.isApprox(Eigen::Vector3d(0.25, 0.5, 0.25), 1e-9))
+      << through->barycentric.transpose();
   // steeper, on past the hypotenuse x + y = 1: deepest where it leaves the prism, at x = 0.75
   through = hit({0.25, 0.25, 0.05}, {1.25, 0.25, -0.15});
   ASSERT_TRUE(through.has_value());
   EXPECT_NEAR(through->depth, 0.05 * s, 1e-12);
-  EXPECT_TRUE(through->barycentric.isApprox(Eigen::Vector3d(0.0, 0.75, 0.25), 1e-9)) << through->barycentric.transpose();
+  EXPECT_TRUE(through->barycentric.isApprox(Eigen::Vector3d(0.0, 0.75, 0.25), 1e-9))
+      << through->barycentric.transpose();
   // the same edge reversed gives the same hit
   const std::optional<FacePenetration> reversed = hit({1.25, 0.25, -0.15}, {0.25, 0.25, 0.05});
   ASSERT_TRUE(reversed.has_value());

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "round_tool_contact.h"
 #include "surface_distance.h"
@@ -17,7 +17,8 @@ namespace {
 
 // The octahedron |x| + |y| + |z| <= size around `centre`, its faces counter-clockwise from
 // outside; vertices numbered from `first`.
-void add_octahedron(double size, const Eigen::Vector3d& centre, Eigen::Matrix3Xd& positions, Eigen::Matrix3Xi& triangles) {
+void add_octahedron(double size, const Eigen::Vector3d& centre, Eigen::Matrix3Xd& positions,
+                    Eigen::Matrix3Xi& triangles) {
   const int first = static_cast<int>(positions.cols());
   positions.conservativeResize(3, first + 6);
   for (int axis = 0; axis < 3; ++axis) {
@@ -74,7 +75,8 @@ TEST(SurfaceDistance, NearestPointsAgreeWithBruteForce) {
       sampled = std::min(sampled, d);
       for (int j = 0; j <= kSteps; ++j) {
         for (int k = 0; i == 0 && j + k <= kSteps; ++k) {
-          const Eigen::Vector3d q = a + (static_cast<double>(j) / kSteps) * (b - a) + (static_cast<double>(k) / kSteps) * (c - a);
+          const Eigen::Vector3d q =
+              a + (static_cast<double>(j) / kSteps) * (b - a) + (static_cast<double>(k) / kSteps) * (c - a);
           EXPECT_GE((q - s).norm(), (w[0] * a + w[1] * b + w[2] * c - s).norm() - 1e-12) << "closest_barycentric";
         }
       }
@@ -110,8 +112,9 @@ TEST(SurfaceDistance, PseudonormalTellsInsideFromOutsideAtFacesEdgesAndCorners) 
       }
     }
     corners_or_edges += (nearest.barycentric.array() == 0.0).any();
-    const bool outside = (p - point_of(x, tri, nearest.triangle, nearest.barycentric))
-                             .dot(pseudonormal(x, tri, topology, nearest)) > 0.0;
+    const bool outside =
+        (p - point_of(x, tri, nearest.triangle, nearest.barycentric)).dot(pseudonormal(x, tri, topology, nearest)) >
+        0.0;
     EXPECT_EQ(outside, level > 1.0) << p.transpose();
     inside += level < 1.0;
   }
@@ -124,11 +127,13 @@ TEST(SurfaceTopology, ASurfaceInsideAnotherIsNotOuter) {
   Eigen::Matrix3Xi tri(3, 0);
   add_octahedron(1.0, Eigen::Vector3d::Zero(), x, tri);
   add_octahedron(0.3, Eigen::Vector3d(0.1, 0.2, 0.05), x, tri);  // an inclusion
-  add_octahedron(0.5, Eigen::Vector3d(3, 0, 0), x, tri);          // a second body beside it
+  add_octahedron(0.5, Eigen::Vector3d(3, 0, 0), x, tri);         // a second body beside it
   const SurfaceTopology topology = surface_topology(x, tri);
   for (int t = 0; t < 24; ++t) EXPECT_EQ(topology.outer[static_cast<std::size_t>(t)], (t < 8 || t >= 16) ? 1 : 0) << t;
   for (int v = 0; v < x.cols(); ++v) {
-    EXPECT_EQ(topology.vertex_offset[static_cast<std::size_t>(v) + 1] - topology.vertex_offset[static_cast<std::size_t>(v)], 4);
+    EXPECT_EQ(
+        topology.vertex_offset[static_cast<std::size_t>(v) + 1] - topology.vertex_offset[static_cast<std::size_t>(v)],
+        4);
   }
 }
 
@@ -157,7 +162,6 @@ TEST(RoundToolContact, ACoreInsideOrOutsideIsAtItsSignedDistance) {
   EXPECT_NEAR(along_edge[0].signed_distance, 0.05, 1e-12);
   for (const CoreContact& contact : along_edge) EXPECT_GT(contact.signed_distance, 0.0);
 }
-
 
 // Where the surface folds around a thin tool its walls cross, and the nearest point's
 // pseudonormal can put the core inside the tissue when it is not. A core that was outside a

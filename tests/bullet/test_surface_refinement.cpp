@@ -6,8 +6,8 @@
 #include <map>
 #include <utility>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/shapes.h"
 #include "surface_refinement.h"

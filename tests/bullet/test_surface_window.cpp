@@ -7,8 +7,8 @@
 #include <random>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/embedding.h"
 #include "surface_topology.h"
@@ -31,7 +31,8 @@ struct Sheet {
   Eigen::Matrix3Xd vertices() const {
     Eigen::Matrix3Xd v(3, static_cast<Eigen::Index>(hang.size()));
     for (std::size_t i = 0; i < hang.size(); ++i) {
-      v.col(static_cast<Eigen::Index>(i)) = weight[i] * nodes.col(hang[i][0]) + (1.0 - weight[i]) * nodes.col(hang[i][1]);
+      v.col(static_cast<Eigen::Index>(i)) =
+          weight[i] * nodes.col(hang[i][0]) + (1.0 - weight[i]) * nodes.col(hang[i][1]);
     }
     return v;
   }
@@ -91,8 +92,10 @@ Eigen::AlignedBox3d grown(const ContactBox& box) {
     const Eigen::AlignedBox3d reach = grown(box);
     for (Eigen::Index v = 0; v < vertices.cols(); ++v) {
       if (!reach.contains(vertices.col(v))) continue;
-      if (!vertex_in[static_cast<std::size_t>(v)]) return ::testing::AssertionFailure() << "vertex " << v << " left out";
-      for (int k = topology.vertex_offset[static_cast<std::size_t>(v)]; k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+      if (!vertex_in[static_cast<std::size_t>(v)])
+        return ::testing::AssertionFailure() << "vertex " << v << " left out";
+      for (int k = topology.vertex_offset[static_cast<std::size_t>(v)];
+           k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
         const int t = topology.vertex_triangle[static_cast<std::size_t>(k)];
         if (!triangle_complete(t)) return ::testing::AssertionFailure() << "triangle " << t << " around vertex " << v;
       }
@@ -101,11 +104,13 @@ Eigen::AlignedBox3d grown(const ContactBox& box) {
       Eigen::AlignedBox3d bounds(vertices.col(triangles(0, t)));
       bounds.extend(vertices.col(triangles(1, t))).extend(vertices.col(triangles(2, t)));
       if (!reach.intersects(bounds)) continue;
-      if (!triangle_complete(static_cast<int>(t))) return ::testing::AssertionFailure() << "triangle " << t << " left out";
+      if (!triangle_complete(static_cast<int>(t)))
+        return ::testing::AssertionFailure() << "triangle " << t << " left out";
       // a corner's pseudonormal reads the triangles around it
       for (int corner = 0; corner < 3; ++corner) {
         const int v = triangles(corner, t);
-        for (int k = topology.vertex_offset[static_cast<std::size_t>(v)]; k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+        for (int k = topology.vertex_offset[static_cast<std::size_t>(v)];
+             k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
           const int around = topology.vertex_triangle[static_cast<std::size_t>(k)];
           if (!triangle_complete(around)) {
             return ::testing::AssertionFailure() << "triangle " << around << " around corner " << v << " of " << t;
@@ -123,8 +128,10 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
   const double margin = 0.004;
   SurfaceWindow window(margin, sheet.spread);
   // a probe's box over the middle and a table's just under the sheet
-  const ContactBox probe{&sheet, Eigen::AlignedBox3d(Eigen::Vector3d(0.045, 0.045, 0.0), Eigen::Vector3d(0.05, 0.05, 0.05)), 0.003};
-  const ContactBox table{&topology, Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, -0.2), Eigen::Vector3d(1, 1, -0.012)), 0.0};
+  const ContactBox probe{
+      &sheet, Eigen::AlignedBox3d(Eigen::Vector3d(0.045, 0.045, 0.0), Eigen::Vector3d(0.05, 0.05, 0.05)), 0.003};
+  const ContactBox table{&topology, Eigen::AlignedBox3d(Eigen::Vector3d(-1, -1, -0.2), Eigen::Vector3d(1, 1, -0.012)),
+                         0.0};
   const std::vector<ContactBox> chosen_boxes{probe, table};
   window.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, chosen_boxes);
   ASSERT_TRUE(window.holds(chosen_boxes));
@@ -166,7 +173,8 @@ TEST(SurfaceWindow, ANodeMovedByTheMarginOrABoxOfAnotherBodyEndsIt) {
   const SurfaceTopology topology = surface_topology(sheet.vertices(), sheet.triangles);
   SurfaceWindow window(0.004, 1.0);
   EXPECT_FALSE(window.holds({}));  // nothing chosen yet
-  const ContactBox probe{&sheet, Eigen::AlignedBox3d(Eigen::Vector3d(0.04, 0.04, 0.0), Eigen::Vector3d(0.05, 0.05, 0.05)), 0.0};
+  const ContactBox probe{&sheet,
+                         Eigen::AlignedBox3d(Eigen::Vector3d(0.04, 0.04, 0.0), Eigen::Vector3d(0.05, 0.05, 0.05)), 0.0};
   window.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {probe});
   Eigen::Matrix3Xd nodes = sheet.nodes;
   nodes(2, 5) += 0.0039;
@@ -189,7 +197,8 @@ TEST(SurfaceTopology, OneVertexNormalIsVertexNormalsBitForBit) {
   Sheet sheet = wavy_sheet(12, 0.1);
   std::mt19937 random(3);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (Eigen::Index n = 0; n < sheet.nodes.cols(); ++n) sheet.nodes.col(n) += 0.003 * Eigen::Vector3d(unit(random), unit(random), unit(random));
+  for (Eigen::Index n = 0; n < sheet.nodes.cols(); ++n)
+    sheet.nodes.col(n) += 0.003 * Eigen::Vector3d(unit(random), unit(random), unit(random));
   const Eigen::Matrix3Xd vertices = sheet.vertices();
   const SurfaceTopology topology = surface_topology(vertices, sheet.triangles);
   Eigen::Matrix3Xd all;

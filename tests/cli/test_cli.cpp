@@ -36,7 +36,8 @@ nlohmann::json run_json(const std::string& arguments) {
 TEST(Cli, ElongationJsonCarriesTheContractKeys) {
   const nlohmann::json j = run_json("measure elongation --young 2e5 --poisson 0.45");
   for (const char* key : {"inputs", "measured", "expected", "error"}) EXPECT_TRUE(j.contains(key)) << key;
-  for (const char* key : {"young_modulus", "poisson_ratio", "density", "cells", "cell_size", "strain", "gravity", "model"}) {
+  for (const char* key :
+       {"young_modulus", "poisson_ratio", "density", "cells", "cell_size", "strain", "gravity", "model"}) {
     EXPECT_TRUE(j["inputs"].contains(key)) << key;
   }
   EXPECT_EQ(j["inputs"]["model"], "baudet2007");
@@ -94,7 +95,8 @@ TEST(Cli, ExactBendingModelIsSelectableAndNamed) {
 
 TEST(Cli, LawIsSelectableAndNamed) {
   EXPECT_EQ(run_json("measure elongation")["inputs"]["law"], "springs");
-  const nlohmann::json j = run_json("measure elongation --law neo-hookean --model exact-bending --poisson 0.49 --cells 4,4,4");
+  const nlohmann::json j =
+      run_json("measure elongation --law neo-hookean --model exact-bending --poisson 0.49 --cells 4,4,4");
   EXPECT_EQ(j["inputs"]["law"], "neo-hookean");
   EXPECT_NEAR(j["error"]["young_modulus"].get<double>(), 0.0, 1e-3);
   EXPECT_NEAR(j["error"]["poisson_ratio"].get<double>(), 0.0, 1e-3);
@@ -146,7 +148,7 @@ TEST(Cli, BondedCompressionReportsThePlateForceTheBulgeAndTheVolume) {
   // pressed, the plate pushes down: more than E A strain (the bonded faces cannot spread)
   EXPECT_LT(force, -15300 * 0.08 * 0.08 * 0.1);
   EXPECT_NEAR(j["measured"]["stress"].get<double>(), force / (0.08 * 0.08), 1e-9 * std::abs(force));
-  EXPECT_GT(j["measured"]["bulge"].get<double>(), 0.0);                    // the sides bulge out
+  EXPECT_GT(j["measured"]["bulge"].get<double>(), 0.0);                     // the sides bulge out
   EXPECT_LT(std::abs(j["measured"]["volume_change"].get<double>()), 0.01);  // nearly incompressible
   EXPECT_GT(j["measured"]["least_cell_volume_ratio"].get<double>(), 0.9);
   const ToolRun table = run_tool("measure bonded-compression --cells 2,2,2 --points 1");
@@ -265,7 +267,9 @@ std::pair<int, int> png_size(const std::string& path) {
   const std::size_t read = std::fread(head.data(), 1, head.size(), file);
   std::fclose(file);
   if (read != head.size() || head[1] != 'P' || head[2] != 'N' || head[3] != 'G') return {0, 0};
-  const auto big_endian = [&](int at) { return (head[at] << 24) | (head[at + 1] << 16) | (head[at + 2] << 8) | head[at + 3]; };
+  const auto big_endian = [&](int at) {
+    return (head[at] << 24) | (head[at + 1] << 16) | (head[at + 2] << 8) | head[at + 3];
+  };
   return {big_endian(16), big_endian(20)};
 }
 
@@ -274,9 +278,9 @@ TEST(Cli, CantileverDrawsItsPictureAndComparesWithAReference) {
   // does not, so there are no error figures
   const std::string png = ::testing::TempDir() + "cli_cantilever.png";
   std::remove(png.c_str());
-  const nlohmann::json j = run_json("measure cantilever --cells 8,2,2 --png " + png +
-                                    " --width 320 --height 180 --reference " CUBESPRING_TEST_DATA_DIR
-                                    "/calculix/one_brick.frd");
+  const nlohmann::json j =
+      run_json("measure cantilever --cells 8,2,2 --png " + png +
+               " --width 320 --height 180 --reference " CUBESPRING_TEST_DATA_DIR "/calculix/one_brick.frd");
   EXPECT_EQ(j["png"], png);
   EXPECT_EQ(png_size(png), std::make_pair(320, 180));
   const nlohmann::json& reference = j["reference"];
@@ -285,8 +289,8 @@ TEST(Cli, CantileverDrawsItsPictureAndComparesWithAReference) {
   for (const char* key : {"tip_deflection", "tip_error", "mean_nodal_error", "max_nodal_error"}) {
     EXPECT_TRUE(reference.contains(key) && reference[key].is_null()) << key;
   }
-  const ToolRun table = run_tool("measure cantilever --cells 8,2,2 --reference " CUBESPRING_TEST_DATA_DIR
-                                 "/calculix/one_brick.frd");
+  const ToolRun table =
+      run_tool("measure cantilever --cells 8,2,2 --reference " CUBESPRING_TEST_DATA_DIR "/calculix/one_brick.frd");
   EXPECT_EQ(table.exit_code, 0);
   EXPECT_NE(table.out.find("8 of 81 lattice nodes matched"), std::string::npos) << table.out;
 }
@@ -330,7 +334,8 @@ TEST(Cli, VoxelizeJsonTakesANameThatIsNotUtf8) {
   {
     std::ofstream out(obj, std::ios::binary);
     out << "o Leber_gr\xfcn\n";
-    for (const char* v : {"0 0 0", "0.1 0 0", "0.1 0.1 0", "0 0.1 0", "0 0 0.1", "0.1 0 0.1", "0.1 0.1 0.1", "0 0.1 0.1"}) {
+    for (const char* v :
+         {"0 0 0", "0.1 0 0", "0.1 0.1 0", "0 0.1 0", "0 0 0.1", "0.1 0 0.1", "0.1 0.1 0.1", "0 0.1 0.1"}) {
       out << "v " << v << "\n";
     }
     out << "f 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n";  // outward
@@ -378,12 +383,14 @@ TEST(Cli, ABenchmarkWithoutItsProgramSaysWhatIsMissing) {
 // (the 2-thread ceiling from the 1-thread step and two bodies at once); the floor with implicit
 // connectivity for boxes only (it must visit the model's spring count).
 TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
-  const nlohmann::json rows = run_json("bench --sizes '2,2,2;3,1,1' --sphere 4 --min-seconds 0.01 --implicit-max-cells 100 --json");
+  const nlohmann::json rows =
+      run_json("bench --sizes '2,2,2;3,1,1' --sphere 4 --min-seconds 0.01 --implicit-max-cells 100 --json");
   ASSERT_TRUE(rows.is_array());
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[2]["body"], "sphere 4");
   EXPECT_TRUE(rows[2]["grid_bare_spring_pass_ms"].is_null()) << rows[2].dump();
-  for (int box = 0; box < 2; ++box) EXPECT_GT(rows[box]["grid_bare_spring_pass_ms"].get<double>(), 0.0) << rows[box].dump();
+  for (int box = 0; box < 2; ++box)
+    EXPECT_GT(rows[box]["grid_bare_spring_pass_ms"].get<double>(), 0.0) << rows[box].dump();
   const nlohmann::json& box = rows[0];
   EXPECT_EQ(box["body"], "2x2x2");
   EXPECT_EQ(box["cells"], 8);
@@ -399,8 +406,8 @@ TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
     EXPECT_GT(row["exact_bending_symplectic_euler_ms"]["1"].get<double>(), 0.0) << row.dump();
     const double two_bodies = row["two_bodies_at_once_ms"].get<double>();
     EXPECT_GT(two_bodies, 0.0) << row.dump();
-    EXPECT_NEAR(row["two_thread_ceiling"].get<double>(), 2.0 * row["symplectic_euler_ms"]["1"].get<double>() / two_bodies,
-                1e-12)
+    EXPECT_NEAR(row["two_thread_ceiling"].get<double>(),
+                2.0 * row["symplectic_euler_ms"]["1"].get<double>() / two_bodies, 1e-12)
         << row.dump();
     EXPECT_GT(row["implicit_euler_ms"].get<double>(), 0.0) << row.dump();
     EXPECT_EQ(row["implicit_euler_threads_ms"]["1"], row["implicit_euler_ms"]) << row.dump();
@@ -441,7 +448,8 @@ TEST(Cli, BenchLayoutTimesBothLayoutsByFill) {
 // with the same tip to the bit (threads do not change results), and its JSON keys.
 TEST(Cli, BenchBulletRowsCoverEveryEngineAndThreadCount) {
   const nlohmann::json rows = run_json(
-      "bench-bullet --sizes 8,2,2 --seconds 0.05 --iterations 1 --models baudet2007 --threads 1,2 --max-case-seconds 20");
+      "bench-bullet --sizes 8,2,2 --seconds 0.05 --iterations 1 --models baudet2007 --threads 1,2 --max-case-seconds "
+      "20");
   ASSERT_TRUE(rows.is_array());
   std::map<std::string, int> engines;
   std::map<int, double> explicit_tip;
@@ -471,8 +479,8 @@ TEST(Cli, BenchBulletRowsCoverEveryEngineAndThreadCount) {
 // 10 cm/s, and a 20 g box dropped on it. The surface stays out of the probe within the contact
 // issue's 0.5 mm, its force never halves while pressing, and the box rests carried by the tissue.
 TEST(Cli, BenchContactProbesAndDropsWithinTheContactTargets) {
-  const nlohmann::json out = run_json(
-      "bench-contact --cells-across 10 --radii 0.0025 --speeds 0.1 --steps 0.0166667 --drops 0.02");
+  const nlohmann::json out =
+      run_json("bench-contact --cells-across 10 --radii 0.0025 --speeds 0.1 --steps 0.0166667 --drops 0.02");
   ASSERT_EQ(out["probes"].size(), 1u) << out.dump();
   const nlohmann::json& probe = out["probes"][0];
   EXPECT_EQ(probe["failure"], "") << probe.dump();
@@ -507,42 +515,40 @@ TEST_P(CliRejects, WithOneLineNamingTheArgument) {
 
 INSTANTIATE_TEST_SUITE_P(
     BadArguments, CliRejects,
-    ::testing::Values(BadArgument{"measure twist", "twist"}, BadArgument{"measure elongation --poisson 0.5", "--poisson"},
-                      BadArgument{"measure elongation --young 0", "--young"},
-                      BadArgument{"measure elongation --cells 0,1,1", "--cells"},
-                      // 1e15 cells: more than int indices address; 1.3e8: about 250 GB once built
-                      BadArgument{"measure elongation --cells 100000,100000,100000", "--cells"},
-                      BadArgument{"measure elongation --cells 511,512,512", "memory limit"},
-                      BadArgument{"measure elongation --cell-size 1e-120", "--cell-size"},
-                      BadArgument{"measure cantilever --gravity 0", "--gravity"},
-                      BadArgument{"measure elongation --yung 1e6", "--yung"},
-                      BadArgument{"measure elongation --cell-size -0.01", "--cell-size"},
-                      BadArgument{"measure cantilever --cells 16,4", "--cells"},
-                      BadArgument{"measure shear --control torque", "--control"},
-                      BadArgument{"measure elongation --young abc", "--young"},
-                      BadArgument{"measure elongation --model tetra", "--model"},
-                      BadArgument{"measure elongation --model exact-bending --edge-fraction 0", "--edge-fraction"},
-                      BadArgument{"measure elongation --png beam.png", "--png"},
-                      BadArgument{"measure cantilever --reference /nonexistent/beam.frd", "/nonexistent/beam.frd"},
-                      BadArgument{"measure cantilever --reference " CUBESPRING_DATA_DIR "/liver.obj", "no node block"},
-                      BadArgument{"measure cantilever --png /nonexistent/dir/beam.png", "/nonexistent/dir/beam.png"},
-                      BadArgument{"measure cantilever --png beam.png --width 0", "--width"},
-                      BadArgument{"measure cantilever --png beam.png --magnify nan", "--magnify"},
-                      BadArgument{"bench --min-seconds 0", "--min-seconds"},
-                      BadArgument{"bench --min-seconds nan", "--min-seconds"},
-                      BadArgument{"bench-layout --min-seconds inf", "--min-seconds"},
-                      BadArgument{"voxelize /nonexistent/organ.obj", "/nonexistent/organ.obj"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0", "--cell-size"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.01 --cells-across 9",
-                                  "--cells-across"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --scale -2", "-2"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.0001 --max-memory 1000000",
-                                  "memory limit"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.mtl", "liver.mtl"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --min-fraction 2",
-                                  "--min-fraction"},
-                      BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --samples 9", "--samples"},
-                      BadArgument{"measure elongation --cells 200000,1,1", "from 1 to 100000"}));
+    ::testing::Values(
+        BadArgument{"measure twist", "twist"}, BadArgument{"measure elongation --poisson 0.5", "--poisson"},
+        BadArgument{"measure elongation --young 0", "--young"},
+        BadArgument{"measure elongation --cells 0,1,1", "--cells"},
+        // 1e15 cells: more than int indices address; 1.3e8: about 250 GB once built
+        BadArgument{"measure elongation --cells 100000,100000,100000", "--cells"},
+        BadArgument{"measure elongation --cells 511,512,512", "memory limit"},
+        BadArgument{"measure elongation --cell-size 1e-120", "--cell-size"},
+        BadArgument{"measure cantilever --gravity 0", "--gravity"},
+        BadArgument{"measure elongation --yung 1e6", "--yung"},
+        BadArgument{"measure elongation --cell-size -0.01", "--cell-size"},
+        BadArgument{"measure cantilever --cells 16,4", "--cells"},
+        BadArgument{"measure shear --control torque", "--control"},
+        BadArgument{"measure elongation --young abc", "--young"},
+        BadArgument{"measure elongation --model tetra", "--model"},
+        BadArgument{"measure elongation --model exact-bending --edge-fraction 0", "--edge-fraction"},
+        BadArgument{"measure elongation --png beam.png", "--png"},
+        BadArgument{"measure cantilever --reference /nonexistent/beam.frd", "/nonexistent/beam.frd"},
+        BadArgument{"measure cantilever --reference " CUBESPRING_DATA_DIR "/liver.obj", "no node block"},
+        BadArgument{"measure cantilever --png /nonexistent/dir/beam.png", "/nonexistent/dir/beam.png"},
+        BadArgument{"measure cantilever --png beam.png --width 0", "--width"},
+        BadArgument{"measure cantilever --png beam.png --magnify nan", "--magnify"},
+        BadArgument{"bench --min-seconds 0", "--min-seconds"}, BadArgument{"bench --min-seconds nan", "--min-seconds"},
+        BadArgument{"bench-layout --min-seconds inf", "--min-seconds"},
+        BadArgument{"voxelize /nonexistent/organ.obj", "/nonexistent/organ.obj"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0", "--cell-size"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.01 --cells-across 9", "--cells-across"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --scale -2", "-2"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --cell-size 0.0001 --max-memory 1000000",
+                    "memory limit"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.mtl", "liver.mtl"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --min-fraction 2", "--min-fraction"},
+        BadArgument{"voxelize " CUBESPRING_DATA_DIR "/liver.obj --rule fraction --samples 9", "--samples"},
+        BadArgument{"measure elongation --cells 200000,1,1", "from 1 to 100000"}));
 
 #ifdef CUBESPRING_HAS_BULLET_PLUGIN
 INSTANTIATE_TEST_SUITE_P(BenchContactBadArguments, CliRejects,

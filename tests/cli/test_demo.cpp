@@ -70,7 +70,8 @@ struct Key {
 
 std::vector<Key> probe_keys(const nlohmann::json& scene) {
   std::vector<Key> keys;
-  for (const auto& k : scene["tools"][0]["keyframes"]) keys.push_back({k["time"].get<double>(), vector3(k["position"])});
+  for (const auto& k : scene["tools"][0]["keyframes"])
+    keys.push_back({k["time"].get<double>(), vector3(k["position"])});
   return keys;
 }
 
@@ -170,7 +171,9 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   std::ifstream csv(out / "tool_forces.csv");
   std::string line;
   ASSERT_TRUE(std::getline(csv, line));
-  EXPECT_EQ(line, "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,penetration_m");
+  EXPECT_EQ(line,
+            "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,"
+            "penetration_m");
   std::vector<ForceRow> rows;
   while (std::getline(csv, line)) {
     const std::vector<std::string> fields = split(line);
@@ -214,8 +217,9 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   int pressed_frame = -1;
   for (int f = 0; f < kFrames; ++f) {
     const double t = duration * f / (kFrames - 1);
-    if (t > keys[1].time && t < keys[3].time && (pressed_frame < 0 || std::abs(t - keys[2].time) <
-                                                                         std::abs(duration * pressed_frame / (kFrames - 1) - keys[2].time))) {
+    if (t > keys[1].time && t < keys[3].time &&
+        (pressed_frame < 0 ||
+         std::abs(t - keys[2].time) < std::abs(duration * pressed_frame / (kFrames - 1) - keys[2].time))) {
       pressed_frame = f;
     }
   }
@@ -282,10 +286,11 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   }
   const double near_mean = near_pixels > 0 ? near_sum / near_pixels : 0.0;
   const double far_mean = far_pixels > 0 ? far_sum / far_pixels : 0.0;
-  std::printf("frame %d (t = %.2f s), tip at pixel (%.1f, %.1f): near it %d of %d pixels changed (mean %.1f levels); "
-              "far away %d of %d changed by more than %d (mean %.2f levels); %d of %d corner pixels changed\n",
-              pressed_frame, t_pressed, tip.x(), tip.y(), near_changed, near_pixels, near_mean, far_changed_visibly,
-              far_pixels, kVisible, far_mean, corner_changed, corner_pixels);
+  std::printf(
+      "frame %d (t = %.2f s), tip at pixel (%.1f, %.1f): near it %d of %d pixels changed (mean %.1f levels); "
+      "far away %d of %d changed by more than %d (mean %.2f levels); %d of %d corner pixels changed\n",
+      pressed_frame, t_pressed, tip.x(), tip.y(), near_changed, near_pixels, near_mean, far_changed_visibly, far_pixels,
+      kVisible, far_mean, corner_changed, corner_pixels);
   EXPECT_GT(near_pixels, 0);
   EXPECT_GT(near_changed, near_pixels / 2) << "the tissue around the tip moved";
   ASSERT_GT(far_pixels, kWidth * kHeight / 4);
@@ -307,8 +312,8 @@ void write_block_obj(const fs::path& path) {
   constexpr int kSquares = 8;
   const auto at = [](int axis, int i) { return axis == 2 ? 0.02 * i / kSquares : -0.02 + 0.04 * i / kSquares; };
   // each face: the axes u and v across it (u x v points out) and its fixed axis at index `side`
-  const std::array<std::array<int, 4>, 6> faces{{
-      {0, 1, 2, kSquares}, {1, 0, 2, 0}, {0, 2, 1, 0}, {2, 0, 1, kSquares}, {2, 1, 0, 0}, {1, 2, 0, kSquares}}};
+  const std::array<std::array<int, 4>, 6> faces{
+      {{0, 1, 2, kSquares}, {1, 0, 2, 0}, {0, 2, 1, 0}, {2, 0, 1, kSquares}, {2, 1, 0, 0}, {1, 2, 0, kSquares}}};
   int first = 1;
   for (const auto& [u, v, w, side] : faces) {
     for (int j = 0; j <= kSquares; ++j) {
@@ -408,7 +413,8 @@ TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
       {"time": 0.3, "position": [-0.06, 0, 0.018], "rotation": {"axis": [0, 1, 0], "degrees": 90}}]}],
     "settle_time": 0, "duration": 0.5, "frames": 1, "render": {"width": 16, "height": 16}
   })";
-  const ToolRun run = run_tool("run " + (dir.path() / "scene.json").string() + " --out " + (dir.path() / "out").string());
+  const ToolRun run =
+      run_tool("run " + (dir.path() / "scene.json").string() + " --out " + (dir.path() / "out").string());
   ASSERT_EQ(run.exit_code, 0) << run.out;
   std::ifstream csv(dir.path() / "out" / "tool_forces.csv");
   std::string line;
@@ -439,10 +445,13 @@ TEST(DemoScene, StrainColoursShowWhereTheProbeStrainsTheTissue) {
     "render": {"width": 128, "height": 128, "colour_map": "strain", "strain_range": 0.1,
                "camera": {"position": [0.0, -0.08, 0.12], "target": [0, 0, 0.01], "up": [0, 0, 1], "fov": 30}}
   })";
-  const ToolRun run = run_tool("run " + (dir.path() / "scene.json").string() + " --out " + (dir.path() / "out").string());
+  const ToolRun run =
+      run_tool("run " + (dir.path() / "scene.json").string() + " --out " + (dir.path() / "out").string());
   ASSERT_EQ(run.exit_code, 0) << run.out;
-  const cubespring::Result<cubespring::Image> rest = cubespring::read_png((dir.path() / "out" / "frame_0000.png").string());
-  const cubespring::Result<cubespring::Image> pressed = cubespring::read_png((dir.path() / "out" / "frame_0001.png").string());
+  const cubespring::Result<cubespring::Image> rest =
+      cubespring::read_png((dir.path() / "out" / "frame_0000.png").string());
+  const cubespring::Result<cubespring::Image> pressed =
+      cubespring::read_png((dir.path() / "out" / "frame_0001.png").string());
   ASSERT_TRUE(rest.ok() && pressed.ok());
 
   cubespring::Camera camera;
@@ -465,7 +474,7 @@ TEST(DemoScene, StrainColoursShowWhereTheProbeStrainsTheTissue) {
     EXPECT_GT(warmth(*pressed, near), 0) << "strained past mid-scale at " << degrees << " degrees";
   }
   for (const Eigen::Vector3d& far : {Eigen::Vector3d(-0.017, -0.017, kTop), Eigen::Vector3d(0.017, -0.017, kTop),
-                                    Eigen::Vector3d(0.0, -0.02, 0.008)}) {
+                                     Eigen::Vector3d(0.0, -0.02, 0.008)}) {
     EXPECT_LT(warmth(*rest, far), 0) << far.transpose();
     EXPECT_LT(warmth(*pressed, far), 0) << "far from the probe the strain stays low: " << far.transpose();
   }
@@ -486,9 +495,11 @@ TEST(DemoScene, LightsFromTheSceneShadeTheFacesTheyFace) {
     std::ofstream(dir.path() / (name + ".json")) << R"({
       "organ": {"mesh": "block.obj", "cell_size": 0.01}, "table": {"enabled": false}, "gravity": [0, 0, 0],
       "settle_time": 0, "duration": 0.01, "frames": 1,
-      "render": {"width": 64, "height": 64, "colour_map": "none", )" + lighting + R"(,
+      "render": {"width": 64, "height": 64, "colour_map": "none", )" +
+                                                        lighting + R"(,
                  "camera": {"position": [0.0, -0.08, 0.08], "target": [0, 0, 0.01], "fov": 40}}})";
-    const ToolRun run = run_tool("run " + (dir.path() / (name + ".json")).string() + " --out " + (dir.path() / name).string());
+    const ToolRun run =
+        run_tool("run " + (dir.path() / (name + ".json")).string() + " --out " + (dir.path() / name).string());
     EXPECT_EQ(run.exit_code, 0) << run.out;
     return cubespring::read_png((dir.path() / name / "frame_0000.png").string());
   };
@@ -501,7 +512,8 @@ TEST(DemoScene, LightsFromTheSceneShadeTheFacesTheyFace) {
   const Eigen::Vector3d front(0.0, -0.02, 0.01);
 
   const auto from_above = render("above", R"("lights": [{"direction": [0, 0, -1]}], "ambient": 0.2)");
-  const auto from_front = render("front", R"("lights": [{"direction": [0, 1, 0], "colour": [1, 1, 1]}], "ambient": 0.2)");
+  const auto from_front =
+      render("front", R"("lights": [{"direction": [0, 1, 0], "colour": [1, 1, 1]}], "ambient": 0.2)");
   const auto unlit = render("unlit", R"("lights": [], "ambient": 0.2)");
   ASSERT_TRUE(from_above.ok() && from_front.ok() && unlit.ok());
   EXPECT_GT(rgb_at(*from_above, top).sum(), rgb_at(*from_above, front).sum() + 60);
@@ -518,7 +530,8 @@ class SceneErrors : public ::testing::Test {
   ToolRun run_scene(const std::string& text) {
     const fs::path path = dir_.path() / "scene.json";
     std::ofstream(path) << text;
-    return run_tool("run " + path.string() + " --frames 1 --width 16 --height 16 --out " + (dir_.path() / "out").string());
+    return run_tool("run " + path.string() + " --frames 1 --width 16 --height 16 --out " +
+                    (dir_.path() / "out").string());
   }
   static std::string mesh() { return std::string(CUBESPRING_DATA_DIR) + "/liver.obj"; }
 
@@ -526,26 +539,31 @@ class SceneErrors : public ::testing::Test {
 };
 
 TEST_F(SceneErrors, UnknownKeyNamesTheKeyItsPlaceAndLine) {
-  const ToolRun run = run_scene("{\n  \"organ\": {\"mesh\": \"" + mesh() + "\"},\n  \"render\": {\n    \"camra\": {}\n  }\n}\n");
+  const ToolRun run =
+      run_scene("{\n  \"organ\": {\"mesh\": \"" + mesh() + "\"},\n  \"render\": {\n    \"camra\": {}\n  }\n}\n");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.out.find("scene.json:4: unknown key \"camra\" in \"render\" (expected one of: "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("scene.json:4: unknown key \"camra\" in \"render\" (expected one of: "), std::string::npos)
+      << run.out;
   EXPECT_NE(run.out.find("camera"), std::string::npos) << "the keys allowed there are listed: " << run.out;
   EXPECT_EQ(run.out.rfind("error: ", 0), 0u) << run.out;
 }
 
 TEST_F(SceneErrors, UnknownTopLevelKeyNamesTheKeyAndLine) {
-  const ToolRun run = run_scene("{\n  // a comment is fine\n  \"organ\": {\"mesh\": \"" + mesh() + "\"},\n  \"gravty\": [0, 0, -9.81]\n}\n");
+  const ToolRun run = run_scene("{\n  // a comment is fine\n  \"organ\": {\"mesh\": \"" + mesh() +
+                                "\"},\n  \"gravty\": [0, 0, -9.81]\n}\n");
   EXPECT_NE(run.exit_code, 0);
   EXPECT_NE(run.out.find("scene.json:4: unknown key \"gravty\" in the scene"), std::string::npos) << run.out;
 }
 
 TEST_F(SceneErrors, WrongTypeNamesTheKeyAndLine) {
-  const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"" + mesh() +
-                                "\",\n    \"materials\": {\n      \"liver_tissue\": {\n        \"young_modulus\": \"soft\"\n"
-                                "      }\n    }\n  }\n}\n");
+  const ToolRun run =
+      run_scene("{\n  \"organ\": {\n    \"mesh\": \"" + mesh() +
+                "\",\n    \"materials\": {\n      \"liver_tissue\": {\n        \"young_modulus\": \"soft\"\n"
+                "      }\n    }\n  }\n}\n");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.out.find("scene.json:6: \"young_modulus\" in \"organ.materials.liver_tissue\" must be a number, got string"),
-            std::string::npos)
+  EXPECT_NE(
+      run.out.find("scene.json:6: \"young_modulus\" in \"organ.materials.liver_tissue\" must be a number, got string"),
+      std::string::npos)
       << run.out;
 }
 

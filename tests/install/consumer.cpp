@@ -11,13 +11,16 @@
 
 int main() {
   // the README's example: a soft beam, clamped, sagging under gravity with implicit steps
-  cubespring::Material liver;            // SI units: Pa, -, kg/m^3
+  cubespring::Material liver;  // SI units: Pa, -, kg/m^3
   liver.young_modulus = 5e3;
   liver.poisson_ratio = 0.45;
   auto model = cubespring::build_model(cubespring::box_lattice({16, 4, 4}, {0.01, 0.01, 0.01}, liver));
-  if (!model) { std::puts(model.message().c_str()); return 1; }  // errors name the value at fault
+  if (!model) {
+    std::puts(model.message().c_str());
+    return 1;
+  }  // errors name the value at fault
   cubespring::Constraints clamp(*model);
-  (void)clamp.fix_box(*model, {-1, -1, -1}, {1e-9, 1, 1});      // face x = 0
+  (void)clamp.fix_box(*model, {-1, -1, -1}, {1e-9, 1, 1});  // face x = 0
   cubespring::Loads loads;
   loads.gravity = {0, 0, -9.81};
   cubespring::State state = cubespring::rest_state(*model);
@@ -27,7 +30,10 @@ int main() {
   cubespring::Stepper stepper(*model);
   for (int i = 0; i < 1000; ++i) {
     const auto report = stepper.step(*model, clamp, loads, settings, state);
-    if (!report.ok()) { std::puts(report.message.c_str()); break; }  // unstable or CG failure
+    if (!report.ok()) {
+      std::puts(report.message.c_str());
+      break;
+    }  // unstable or CG failure
   }
 
   // checks: the beam moved down and stayed finite; one cube's Young's modulus is right

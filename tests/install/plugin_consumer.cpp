@@ -27,7 +27,10 @@ int main() {
   cubespring::bullet::SoftBodySettings settings;
   settings.lattice = cubespring::box_lattice({3, 3, 2}, {0.01, 0.01, 0.01}, tissue);
   auto block = cubespring::bullet::SoftBody::create(settings);
-  if (!block) { std::puts(block.message().c_str()); return 1; }
+  if (!block) {
+    std::puts(block.message().c_str());
+    return 1;
+  }
   world.addSoftBody(block->get());
   for (int i = 0; i < 60; ++i) world.stepSimulation(1.0f / 60.0f, 1, 1.0f / 60.0f);
   const double weight = (*block)->model().total_mass() * 9.81;
@@ -40,7 +43,10 @@ int main() {
 
   std::ofstream("tetra.obj") << "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
   auto mesh = cubespring::load_mesh("tetra.obj");
-  if (!mesh) { std::puts(mesh.message().c_str()); return 1; }
+  if (!mesh) {
+    std::puts(mesh.message().c_str());
+    return 1;
+  }
   cubespring::VoxelizeOptions options;
   options.cells_across = 20;
   auto voxels = cubespring::voxelize(*mesh, options);

@@ -14,8 +14,9 @@ namespace {
 
 void write_cube(const char* path, double side) {
   std::ofstream obj(path);
-  for (int k = 0; k < 8; ++k) obj << "v " << side * (k & 1) - side / 2 << ' ' << side * ((k >> 1) & 1) - side / 2 << ' '
-                                  << side * ((k >> 2) & 1) << '\n';
+  for (int k = 0; k < 8; ++k)
+    obj << "v " << side * (k & 1) - side / 2 << ' ' << side * ((k >> 1) & 1) - side / 2 << ' ' << side * ((k >> 2) & 1)
+        << '\n';
   // two triangles per face, counter-clockwise seen from outside
   obj << "f 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\n"
          "f 3 7 8\nf 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
@@ -32,15 +33,27 @@ int main() {
     "time_step": 0.004, "settle_time": 0.3, "duration": 0.6
   })";
   auto scene = cubespring::scene::load_scene("press.json", "");
-  if (!scene) { std::puts(scene.message().c_str()); return 1; }
+  if (!scene) {
+    std::puts(scene.message().c_str());
+    return 1;
+  }
   auto built = cubespring::scene::SceneWorld::create(*scene);
-  if (!built) { std::puts(built.message().c_str()); return 1; }
+  if (!built) {
+    std::puts(built.message().c_str());
+    return 1;
+  }
   cubespring::scene::SceneWorld& world = **built;
-  if (auto settled = cubespring::scene::settle(world, *scene); !settled) { std::puts(settled.message().c_str()); return 1; }
+  if (auto settled = cubespring::scene::settle(world, *scene); !settled) {
+    std::puts(settled.message().c_str());
+    return 1;
+  }
   const int steps = static_cast<int>(std::lround(scene->duration / scene->time_step));
   for (int n = 1; n <= steps; ++n) {
     world.place_tools(n * scene->time_step);
-    if (auto stepped = world.step(scene->time_step); !stepped) { std::puts(stepped.message().c_str()); return 1; }
+    if (auto stepped = world.step(scene->time_step); !stepped) {
+      std::puts(stepped.message().c_str());
+      return 1;
+    }
   }
   const double push = world.world().getContactWrench(world.tools().front().body.get()).force.z();
   if (!(push > 0.01)) {

@@ -16,9 +16,9 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 namespace cubespring {
 namespace {
@@ -31,8 +31,8 @@ class LoadMesh : public ::testing::Test {
   void SetUp() override {
     const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::random_device random;
-    dir_ = fs::temp_directory_path() / ("cubespring_test_load_mesh_" + std::string(info->name()) +
-                                        "_" + std::to_string(random()));
+    dir_ = fs::temp_directory_path() /
+           ("cubespring_test_load_mesh_" + std::string(info->name()) + "_" + std::to_string(random()));
     fs::create_directories(dir_);
   }
   void TearDown() override {
@@ -91,8 +91,7 @@ std::set<Point> cube_corners(double low, double high, double scale) {
   return corners;
 }
 
-void expect_error(const Result<TriangleMesh>& result, const std::string& path,
-                  const std::string& fragment = "") {
+void expect_error(const Result<TriangleMesh>& result, const std::string& path, const std::string& fragment = "") {
   ASSERT_FALSE(result.ok()) << "loaded " << result->num_triangles() << " triangles from " << path;
   EXPECT_NE(result.message().find(path), std::string::npos) << result.message();
   EXPECT_NE(result.message().find(fragment), std::string::npos)
@@ -270,8 +269,7 @@ TEST_F(LoadMesh, BinaryStlIsRead) {
     const float normal[3] = {0.0f, 0.0f, 0.0f};
     append(normal, sizeof normal);
     for (int corner : facet) {
-      const float point[3] = {static_cast<float>(kTetrahedron(0, corner)),
-                              static_cast<float>(kTetrahedron(1, corner)),
+      const float point[3] = {static_cast<float>(kTetrahedron(0, corner)), static_cast<float>(kTetrahedron(1, corner)),
                               static_cast<float>(kTetrahedron(2, corner))};
       append(point, sizeof point);
     }
@@ -367,13 +365,11 @@ std::string tetrahedron_dae(const std::string& outer_matrix, const std::string& 
 const char* const kIdentity = "1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1";
 
 /// Each vertex of `mesh` matched to the one of `expected` (3 x 4) within `tolerance`.
-void expect_vertices(const TriangleMesh& mesh, const Eigen::Matrix<double, 3, 4>& expected,
-                     double tolerance) {
+void expect_vertices(const TriangleMesh& mesh, const Eigen::Matrix<double, 3, 4>& expected, double tolerance) {
   ASSERT_EQ(mesh.num_vertices(), 4);
   for (int e = 0; e < 4; ++e) {
     double nearest = std::numeric_limits<double>::infinity();
-    for (int v = 0; v < 4; ++v)
-      nearest = std::min(nearest, (mesh.vertices.col(v) - expected.col(e)).norm());
+    for (int v = 0; v < 4; ++v) nearest = std::min(nearest, (mesh.vertices.col(v) - expected.col(e)).norm());
     EXPECT_LE(nearest, tolerance) << "expected vertex (" << expected.col(e).transpose() << ")";
   }
 }
@@ -381,9 +377,8 @@ void expect_vertices(const TriangleMesh& mesh, const Eigen::Matrix<double, 3, 4>
 TEST_F(LoadMesh, NodeTransformsAccumulateFromTheRoot) {
   // parent: translation by (0.5, -1.25, 2); child: the rotation by 120 degrees about (1, 1, 1),
   // which maps (x, y, z) to (z, x, y). Both exact in float, so the result is exact too.
-  const std::string path =
-      write("moved.dae", tetrahedron_dae("1 0 0 0.5  0 1 0 -1.25  0 0 1 2  0 0 0 1",
-                                         "0 0 1 0  1 0 0 0  0 1 0 0  0 0 0 1"));
+  const std::string path = write(
+      "moved.dae", tetrahedron_dae("1 0 0 0.5  0 1 0 -1.25  0 0 1 2  0 0 0 1", "0 0 1 0  1 0 0 0  0 1 0 0  0 0 0 1"));
   const Result<TriangleMesh> mesh = load_mesh(path);
   ASSERT_TRUE(mesh.ok()) << mesh.message();
   Eigen::Matrix3d rotation;
@@ -401,8 +396,7 @@ TEST_F(LoadMesh, NodeTransformsAccumulateFromTheRoot) {
 TEST_F(LoadMesh, MirroringTransformKeepsTrianglesFacingOutwards) {
   // x -> -x on the parent, translation in the child: determinant -1
   const std::string path = write(
-      "mirrored.dae",
-      tetrahedron_dae("-1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1", "1 0 0 3  0 1 0 0  0 0 1 0  0 0 0 1"));
+      "mirrored.dae", tetrahedron_dae("-1 0 0 0  0 1 0 0  0 0 1 0  0 0 0 1", "1 0 0 3  0 1 0 0  0 0 1 0  0 0 0 1"));
   LoadOptions options;
   options.scale = 0.5;
   const Result<TriangleMesh> mesh = load_mesh(path, options);
@@ -415,8 +409,7 @@ TEST_F(LoadMesh, MirroringTransformKeepsTrianglesFacingOutwards) {
 
 TEST_F(LoadMesh, ColladaUnitIsAppliedByAssimpAndUpAxisIgnored) {
   // assimp scales by <unit meter> itself; a Z_UP file keeps its coordinates (no rotation)
-  const std::string path =
-      write("centimetres.dae", tetrahedron_dae(kIdentity, kIdentity, "0.01", "Z_UP"));
+  const std::string path = write("centimetres.dae", tetrahedron_dae(kIdentity, kIdentity, "0.01", "Z_UP"));
   const Result<TriangleMesh> mesh = load_mesh(path);
   ASSERT_TRUE(mesh.ok()) << mesh.message();
   expect_vertices(*mesh, 0.01 * kTetrahedron, 1e-9);  // 0.01 passes through a float
@@ -439,8 +432,8 @@ TEST_F(LoadMesh, GarbageIsReported) {
   std::mt19937 random(2026);
   std::string garbage(4096, '\0');
   for (char& c : garbage) c = static_cast<char>(random() & 0xff);
-  for (const char* name : {"garbage.obj", "garbage.stl", "garbage.ply", "garbage.dae",
-                           "garbage.gltf", "garbage.xyz123"}) {
+  for (const char* name :
+       {"garbage.obj", "garbage.stl", "garbage.ply", "garbage.dae", "garbage.gltf", "garbage.xyz123"}) {
     SCOPED_TRACE(name);
     const std::string path = write(name, garbage);
     expect_error(load_mesh(path), path);
@@ -514,9 +507,11 @@ TEST_F(LoadMesh, GltfReadsThroughItsOwnProcess) {
 // assimp's ASCII STL reader quotes the rest of the file after a bad number: one bad digit in a
 // 5,000-facet file gave a 700 kB message
 TEST_F(LoadMesh, AReaderMessageQuotingTheFileIsCutShort) {
-  std::string stl = "solid bad\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 x.5\n  vertex 0 1 0\n"
-                    " endloop\nendfacet\n";
-  for (int i = 0; i < 5000; ++i) stl += "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
+  std::string stl =
+      "solid bad\nfacet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 x.5\n  vertex 0 1 0\n"
+      " endloop\nendfacet\n";
+  for (int i = 0; i < 5000; ++i)
+    stl += "facet normal 0 0 1\n outer loop\n  vertex 0 0 0\n  vertex 1 0 0\n  vertex 0 1 0\n endloop\nendfacet\n";
   stl += "endsolid bad\n";
   const std::string path = write("bad_number.stl", stl);
   const Result<TriangleMesh> mesh = load_mesh(path);
@@ -552,8 +547,9 @@ TEST_F(LoadMesh, OnlyTheReadersOfTheFilesFormatSeeIt) {
   expect_error(as_glb, glb);
   EXPECT_EQ(as_glb.message().find("FBX"), std::string::npos) << as_glb.message();
   // a file named only ".obj" is an OBJ file (assimp takes the extension from the last dot)
-  const Result<TriangleMesh> dotfile = load_mesh(write(".obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-                                                              "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"));
+  const Result<TriangleMesh> dotfile = load_mesh(write(".obj",
+                                                       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
+                                                       "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"));
   ASSERT_TRUE(dotfile.ok()) << dotfile.message();
   EXPECT_EQ(dotfile->num_triangles(), 4);
   const std::string fbx_dotfile = write(".fbx", kTetrahedronPly);
@@ -607,8 +603,7 @@ TEST_F(LoadMesh, NonFiniteCoordinatesAreReported) {
     SCOPED_TRACE(value);
     const std::string path =
         write(std::string("bad_") + (value[0] == '-' ? "minus_inf" : value) + ".obj",
-              std::string("v 0 0 0\nv ") + value +
-                  " 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+              std::string("v 0 0 0\nv ") + value + " 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
     expect_error(load_mesh(path), path, "finite");
   }
 }
@@ -621,8 +616,7 @@ TEST_F(LoadMesh, HugeCoordinatesThatOverflowWithTheScaleAreReported) {
 }
 
 TEST_F(LoadMesh, ObjFaceIndexingAMissingVertexIsReported) {
-  const std::string path =
-      write("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 99\nf 1 3 4\n");
+  const std::string path = write("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 99\nf 1 3 4\n");
   expect_error(load_mesh(path), path, "out of range");
 }
 
@@ -636,8 +630,10 @@ TEST_F(LoadMesh, PlyFaceIndexingAMissingVertexIsReported) {
 
 // A binary little-endian PLY of the tetrahedron; `end_line` ends its header.
 std::string binary_tetrahedron_ply(const std::string& end_line = "end_header") {
-  std::string text = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                     "property float z\nelement face 4\nproperty list uchar int vertex_indices\n" + end_line + "\n";
+  std::string text =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 4\nproperty list uchar int vertex_indices\n" +
+      end_line + "\n";
   const auto append = [&text](const auto& value) { text.append(reinterpret_cast<const char*>(&value), sizeof(value)); };
   const float corners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (const auto& corner : corners) {
@@ -677,7 +673,8 @@ TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
       // and by its extension, whatever the first line (found by fuzzing: a crash)
       {"not_ply.ply", "ply\x9d\x9d\nformat ascii 1.0\n", "line 1: a PLY file begins with the line 'ply'"},
       // a second format line, binary then ASCII, made assimp write past its arrays (fuzzing)
-      {"two_formats.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nformat ascii 1.0\nend_header\n1\n2\n",
+      {"two_formats.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\nformat ascii 1.0\nend_header\n1\n2\n",
        "line 5: a second 'format' line"},
       // a binary face list longer than the file
       {"long_list.ply", long_list, "line 7: the file ends inside its 'face' elements"},
@@ -691,7 +688,8 @@ TEST_F(LoadMesh, APlyHeaderAssimpWouldTrustIsCheckedFirst) {
 const char* const kTetrahedronOff = "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
 
 TEST_F(LoadMesh, OffKeepsItsTriangles) {
-  for (const std::string& text : {std::string(kTetrahedronOff), "# a comment\nOFF 4 4 6\n" + std::string(kTetrahedronOff).substr(10)}) {
+  for (const std::string& text :
+       {std::string(kTetrahedronOff), "# a comment\nOFF 4 4 6\n" + std::string(kTetrahedronOff).substr(10)}) {
     const Result<TriangleMesh> mesh = load_mesh(write("tet.off", text));
     ASSERT_TRUE(mesh.ok()) << mesh.message();
     EXPECT_EQ(mesh->num_triangles(), 4);
@@ -711,7 +709,8 @@ TEST_F(LoadMesh, AnOffFileAssimpWouldTrustIsCheckedFirst) {
       {"short.off", "OFF\n", "expected the vertex, face and edge counts"},
       // found by fuzzing: a face of 13 corners crashed assimp; an index past the vertices
       {"corners.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n13 0 2 1\n", "line 7: face 0 has 13 corners"},
-      {"index.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 4\n", "face 0: corner 2 is vertex 4: expected a vertex index below 4"},
+      {"index.off", "OFF\n4 1 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 4\n",
+       "face 0: corner 2 is vertex 4: expected a vertex index below 4"},
   };
   expect_each_refused(cases);
 }
@@ -722,9 +721,9 @@ TEST_F(LoadMesh, ScaleMustBeAFinitePositiveNumber) {
     double scale;
     const char* text;
   };
-  for (const Case& c : {Case{0.0, "scale = 0"}, Case{-1.0, "scale = -1"},
-                        Case{std::numeric_limits<double>::quiet_NaN(), "scale = nan"},
-                        Case{std::numeric_limits<double>::infinity(), "scale = inf"}}) {
+  for (const Case& c :
+       {Case{0.0, "scale = 0"}, Case{-1.0, "scale = -1"}, Case{std::numeric_limits<double>::quiet_NaN(), "scale = nan"},
+        Case{std::numeric_limits<double>::infinity(), "scale = inf"}}) {
     SCOPED_TRACE(c.text);
     LoadOptions options;
     options.scale = c.scale;
@@ -754,8 +753,7 @@ int obj_triangle_count(const fs::path& path) {
 
 TEST(LoadSharedMeshes, EachLoadsAndValidates) {
   const fs::path dir = CUBESPRING_SHARED_MESHES_DIR;
-  if (!fs::is_directory(dir))
-    GTEST_SKIP() << "no shared meshes at " << dir << " (../shared is absent)";
+  if (!fs::is_directory(dir)) GTEST_SKIP() << "no shared meshes at " << dir << " (../shared is absent)";
   int loaded = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
     if (entry.path().extension() != ".obj") continue;

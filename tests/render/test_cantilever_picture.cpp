@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cantilever_picture.h"
 #include "cubespring/lattice_surface.h"
@@ -45,8 +45,7 @@ Pixel pixel_at(const app::CantileverPicture& picture, const Eigen::Vector3d& poi
 
 bool is_background(const Pixel& p) {
   const Eigen::Vector3d background = RenderSettings().background.cast<double>() * 255.0;
-  return std::abs(p.r - background.x()) < 3 && std::abs(p.g - background.y()) < 3 &&
-         std::abs(p.b - background.z()) < 3;
+  return std::abs(p.r - background.x()) < 3 && std::abs(p.g - background.y()) < 3 && std::abs(p.b - background.z()) < 3;
 }
 
 // Centres of the surface triangles that face the eye, with the displacement there [m].
@@ -81,8 +80,8 @@ TEST(CantileverPicture, TheBeamCoversItsProjectionColouredByDisplacement) {
 
   const LatticeSurface surface = lattice_boundary_surface(beam.model);
   const std::vector<FacingPoint> points =
-      facing_points(surface_vertices(surface, beam.model.rest_positions), surface_vertices(surface, beam.state.positions),
-                    surface.triangles, picture->camera);
+      facing_points(surface_vertices(surface, beam.model.rest_positions),
+                    surface_vertices(surface, beam.state.positions), surface.triangles, picture->camera);
   ASSERT_GT(points.size(), 20u);
   const double largest = (beam.state.positions - beam.model.rest_positions).colwise().norm().maxCoeff();
   int covered = 0;
@@ -128,7 +127,8 @@ TEST(CantileverPicture, TheLatticeWireShowsThroughTheReferenceSurface) {
   int edges_seen = 0;
   int red = 0;
   for (Eigen::Index e = 0; e < edges.cols(); ++e) {
-    if (!on_surface[static_cast<std::size_t>(edges(0, e))] || !on_surface[static_cast<std::size_t>(edges(1, e))]) continue;
+    if (!on_surface[static_cast<std::size_t>(edges(0, e))] || !on_surface[static_cast<std::size_t>(edges(1, e))])
+      continue;
     const Eigen::Vector3d midpoint = 0.5 * (points.col(edges(0, e)) + points.col(edges(1, e)));
     ++edges_seen;
     const Pixel p = pixel_at(*picture, midpoint);
@@ -139,7 +139,8 @@ TEST(CantileverPicture, TheLatticeWireShowsThroughTheReferenceSurface) {
   // the reference's own surface is drawn where it projects, in the colour map's colours
   const Eigen::Matrix3Xd moved = reference.rest_positions + reference.displacements;
   int covered = 0;
-  const std::vector<FacingPoint> facing = facing_points(reference.rest_positions, moved, reference.surface, picture->camera);
+  const std::vector<FacingPoint> facing =
+      facing_points(reference.rest_positions, moved, reference.surface, picture->camera);
   for (const FacingPoint& point : facing) covered += is_background(pixel_at(*picture, point.centre)) ? 0 : 1;
   EXPECT_EQ(covered, static_cast<int>(facing.size()));
 }

@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/embedding.h"
 #include "cubespring/lattice.h"
@@ -122,7 +122,8 @@ std::vector<bool> near_border(const std::vector<bool>& covered, int width, int h
           const int nx = x + dx;
           const int ny = y + dy;
           if (nx < 0 || ny < 0 || nx >= width || ny >= height) continue;
-          if (covered[static_cast<std::size_t>(ny * width + nx)] != self) near[static_cast<std::size_t>(y * width + x)] = true;
+          if (covered[static_cast<std::size_t>(ny * width + nx)] != self)
+            near[static_cast<std::size_t>(y * width + x)] = true;
         }
       }
     }
@@ -377,7 +378,8 @@ TEST(Renderer, LegendShowsTheMapHighAboveLowAndText) {
   EXPECT_LT(high_row, low_row) << "high values belong at the top";
   int text = 0;
   for (int y = 0; y < kHeight; ++y) {
-    for (int x = kWidth / 2; x < kWidth; ++x) text += image->pixel(x, y)[1] > 200 && image->pixel(x, y)[2] > 200 ? 1 : 0;
+    for (int x = kWidth / 2; x < kWidth; ++x)
+      text += image->pixel(x, y)[1] > 200 && image->pixel(x, y)[2] > 200 ? 1 : 0;
   }
   EXPECT_GT(text, 100) << "the numbers and the label are drawn in near-white";
 }

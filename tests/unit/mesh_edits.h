@@ -30,7 +30,8 @@ TriangleMesh filter_triangles(const TriangleMesh& mesh, Keep keep) {
     out.parts.push_back(shrunk);
   }
   out.triangles.resize(3, static_cast<Eigen::Index>(kept.size()));
-  for (std::size_t i = 0; i < kept.size(); ++i) out.triangles.col(static_cast<Eigen::Index>(i)) = mesh.triangles.col(kept[i]);
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    out.triangles.col(static_cast<Eigen::Index>(i)) = mesh.triangles.col(kept[i]);
   return out;
 }
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/calculix_result.h"
 #include "cubespring/fem_comparison.h"
@@ -112,8 +112,9 @@ TEST(CalculixResult, OnlyFacesThatNoOtherElementSharesAreSurface) {
   for (int x = 0; x < 2; ++x) {
     const int low = x == 0 ? 0 : 1;
     const int high = 1 - low;
-    bricks.push_back({1, {id(x, 0, low), id(x + 1, 0, low), id(x + 1, 1, low), id(x, 1, low), id(x, 0, high),
-                          id(x + 1, 0, high), id(x + 1, 1, high), id(x, 1, high)}});
+    bricks.push_back({1,
+                      {id(x, 0, low), id(x + 1, 0, low), id(x + 1, 1, low), id(x, 1, low), id(x, 0, high),
+                       id(x + 1, 0, high), id(x + 1, 1, high), id(x, 1, high)}});
   }
   const std::vector<Eigen::Vector3d> still(nodes.size(), Eigen::Vector3d::Zero());
   Result<FemSolution> two = read_calculix_frd(write_temp("two_bricks.frd", frd_text(nodes, bricks, still)));
@@ -162,18 +163,22 @@ TEST(CalculixResult, BadFilesNameTheFileAndTheFault) {
   const std::string missing = read_calculix_frd("/nonexistent/beam.frd").message();
   EXPECT_NE(missing.find("/nonexistent/beam.frd: cannot open"), std::string::npos) << missing;
   const std::string garbled = error_of("garbled.frd", edited("-9.23074E-07-2.18623E-07", "-9.23074E-07-2.1x623E-07"));
-  EXPECT_NE(garbled.find("garbled.frd:34: '-2.1x623E-07' is not a finite number (node 2)"), std::string::npos) << garbled;
+  EXPECT_NE(garbled.find("garbled.frd:34: '-2.1x623E-07' is not a finite number (node 2)"), std::string::npos)
+      << garbled;
   const std::string nan = error_of("nan.frd", edited("-9.23074E-07-2.18623E-07", "-9.23074E-07         nan"));
   EXPECT_NE(nan.find("is not a finite number"), std::string::npos) << nan;
   const std::string no_displacement = error_of("no_disp.frd", text.substr(0, text.find("    1PSTEP")) + " 9999\n");
   EXPECT_NE(no_displacement.find("no displacements (DISP block); the deck needs '*NODE FILE'"), std::string::npos)
       << no_displacement;
-  const std::string cut = error_of("cut.frd", text.substr(0, text.find(" -1         5 0.00000E+00 0.00000E+00 0.00000E+00\n -1         6")));
+  const std::string cut = error_of(
+      "cut.frd", text.substr(0, text.find(" -1         5 0.00000E+00 0.00000E+00 0.00000E+00\n -1         6")));
   EXPECT_NE(cut.find("cut.frd:"), std::string::npos);
   EXPECT_NE(cut.find("ends inside a block"), std::string::npos) << cut;
-  const std::string shell = error_of("shell.frd", edited(" -1         1    1    0    1", " -1         1    9    0    1"));
+  const std::string shell =
+      error_of("shell.frd", edited(" -1         1    1    0    1", " -1         1    9    0    1"));
   EXPECT_NE(shell.find("element 1 has frd type 9; only solid elements"), std::string::npos) << shell;
-  const std::string unknown_node = error_of("unknown_node.frd", edited("         7         8\n", "         7        80\n"));
+  const std::string unknown_node =
+      error_of("unknown_node.frd", edited("         7         8\n", "         7        80\n"));
   EXPECT_NE(unknown_node.find("element 1 uses node 80, which the node block does not define"), std::string::npos)
       << unknown_node;
   const std::string short_list = error_of("short_list.frd", edited("         7         8\n", "         7\n"));

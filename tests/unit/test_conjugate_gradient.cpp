@@ -7,9 +7,9 @@
 #include <utility>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
-#include <gtest/gtest.h>
 
 #include "solve/conjugate_gradient.h"
 

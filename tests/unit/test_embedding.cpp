@@ -2,8 +2,8 @@
 // SPDX-License-Identifier: MIT
 // Embedding a visual mesh in its voxelized lattice: exact at rest, and any affine motion of the
 // lattice moves the mesh by the same affine map (trilinear interpolation reproduces it).
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/embedding.h"
 #include "cubespring/shapes.h"

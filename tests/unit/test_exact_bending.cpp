@@ -5,10 +5,10 @@
 #include <cmath>
 #include <random>
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <gtest/gtest.h>
 
 #include "cubespring/experiments.h"
 #include "cubespring/integrator.h"
@@ -35,10 +35,10 @@ TEST(ExactBending, ConstantsAtNu03) {
   Result<CellCalibration> c =
       calibrate_cell(CellModel::kExactBending, notes_material(0.3), Eigen::Vector3d::Constant(0.01));
   ASSERT_TRUE(c.ok()) << c.message();
-  EXPECT_NEAR(c->edge_stiffness.x(), 70.0, 1e-12);                  // beta E h
-  EXPECT_NEAR(c->diagonal_stiffness, 288.4615384615385, 1e-9);      // 3 G h / 4
-  EXPECT_NEAR(c->correction(0, 0), 6.8154e4, 1);                    // lambda + G - 4 beta E
-  EXPECT_NEAR(c->correction(0, 1), 1.9231e4, 1);                    // lambda - G
+  EXPECT_NEAR(c->edge_stiffness.x(), 70.0, 1e-12);              // beta E h
+  EXPECT_NEAR(c->diagonal_stiffness, 288.4615384615385, 1e-9);  // 3 G h / 4
+  EXPECT_NEAR(c->correction(0, 0), 6.8154e4, 1);                // lambda + G - 4 beta E
+  EXPECT_NEAR(c->correction(0, 1), 1.9231e4, 1);                // lambda - G
   EXPECT_NEAR(c->twist_stiffness, shear_modulus(notes_material(0.3)) / 48, 1e-9);
 }
 
@@ -91,7 +91,8 @@ TEST(ExactBending, TwistTermSeesOnlyTheTwistModes) {
     const Eigen::Vector3i& i = with.node_grid_index[n];
     x(0, n) += eps * (2 * i.y() - 1) * (2 * i.z() - 1) * h / 2;
   }
-  EXPECT_NEAR(twist_energy_of(with, without, x), shear_modulus(m) / 48 * h * h * h * 4 * eps * eps, 1e-9 * scale * eps * eps);
+  EXPECT_NEAR(twist_energy_of(with, without, x), shear_modulus(m) / 48 * h * h * h * 4 * eps * eps,
+              1e-9 * scale * eps * eps);
   // the six bending modes u_a = s_a s_b and the mode u_a = s_x s_y s_z: zero
   for (int a = 0; a < 3; ++a) {
     for (int b = -1; b < 3; ++b) {
@@ -193,12 +194,12 @@ TEST(ExactBending, RefusesNonCubicCellsAndBadParameters) {
       calibrate_cell(CellModel::kExactBending, notes_material(0.3), Eigen::Vector3d(0.01, 0.01, 0.012));
   ASSERT_FALSE(flat.ok());
   EXPECT_NE(flat.message().find("cubic cells only"), std::string::npos) << flat.message();
-  Result<CellCalibration> beta = calibrate_cell(CellModel::kExactBending, notes_material(0.3),
-                                                Eigen::Vector3d::Constant(0.01), {0.0, 1.0 / 12});
+  Result<CellCalibration> beta =
+      calibrate_cell(CellModel::kExactBending, notes_material(0.3), Eigen::Vector3d::Constant(0.01), {0.0, 1.0 / 12});
   ASSERT_FALSE(beta.ok());
   EXPECT_NE(beta.message().find("edge_fraction"), std::string::npos);
-  Result<CellCalibration> zeta = calibrate_cell(CellModel::kExactBending, notes_material(0.3),
-                                                Eigen::Vector3d::Constant(0.01), {0.07, -1.0});
+  Result<CellCalibration> zeta =
+      calibrate_cell(CellModel::kExactBending, notes_material(0.3), Eigen::Vector3d::Constant(0.01), {0.07, -1.0});
   ASSERT_FALSE(zeta.ok());
   EXPECT_NE(zeta.message().find("twist_factor"), std::string::npos);
   EXPECT_FALSE(parse_cell_model("exact").ok());
@@ -228,7 +229,8 @@ TEST(ExactBending, CheckerboardMotionStaysBounded) {
     // lowest non-rigid frequency of the exact-bending block: sqrt of the 7th eigenvalue of M^-1/2 K M^-1/2
     const Eigen::MatrixXd k = dense_stiffness(model, model.rest_positions, StiffnessKind::kExact);
     Eigen::VectorXd inv_sqrt_mass(3 * model.num_nodes());
-    for (int n = 0; n < model.num_nodes(); ++n) inv_sqrt_mass.segment<3>(3 * n).setConstant(1 / std::sqrt(model.mass[n]));
+    for (int n = 0; n < model.num_nodes(); ++n)
+      inv_sqrt_mass.segment<3>(3 * n).setConstant(1 / std::sqrt(model.mass[n]));
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(inv_sqrt_mass.asDiagonal() * k * inv_sqrt_mass.asDiagonal());
     const int first_elastic = cell_model == CellModel::kBaudet2007 ? 9 : 6;
     const double omega_min = std::sqrt(modes.eigenvalues()[first_elastic]);

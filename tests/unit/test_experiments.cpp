@@ -3,11 +3,11 @@
 // The paper's virtual experiments against the continuum moduli (model notes section 8, 3-6, 10, 12).
 #include <cmath>
 #include <cstdio>
-#include <vector>
 #include <stdexcept>
+#include <vector>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/constraints.h"
 #include "cubespring/experiments.h"
@@ -119,8 +119,9 @@ TEST(Experiments, NonCubicCellsKeepEAndNuAndReportThreeShearModuli) {
   const ExperimentResult g = run(Experiment::kShear, s);
   const Eigen::Vector3d& h = s.cell_size;
   const double ld2 = h.squaredNorm();
-  const double kd = 3 * shear_modulus(s.material) * ld2 * h.prod() /
-                    (4 * (h.x() * h.x() * h.y() * h.y() + h.y() * h.y() * h.z() * h.z() + h.z() * h.z() * h.x() * h.x()));
+  const double kd =
+      3 * shear_modulus(s.material) * ld2 * h.prod() /
+      (4 * (h.x() * h.x() * h.y() * h.y() + h.y() * h.y() * h.z() * h.z() + h.z() * h.z() * h.x() * h.x()));
   const Eigen::Vector3d expected(4 * kd * h.y() * h.z() / (ld2 * h.x()), 4 * kd * h.z() * h.x() / (ld2 * h.y()),
                                  4 * kd * h.x() * h.y() / (ld2 * h.z()));
   for (int plane = 0; plane < 3; ++plane) {
@@ -367,8 +368,8 @@ TEST(Experiments, UniaxialStressAlongARotatedAxisFollowsTheLaw) {
       const Eigen::Matrix3d expected =
           rotation * Eigen::Vector3d(expected_along, 0, 0).asDiagonal() * rotation.transpose();
       const double error = (nominal - expected).cwiseAbs().maxCoeff() / std::abs(expected_along);
-      std::printf("nu %.2f, stretch - 1 = %+.2f along a rotated axis: largest stress error %.3f%% of P = %.1f Pa\n",
-                  nu, strain, 100 * error, expected_along);
+      std::printf("nu %.2f, stretch - 1 = %+.2f along a rotated axis: largest stress error %.3f%% of P = %.1f Pa\n", nu,
+                  strain, 100 * error, expected_along);
       EXPECT_LT(error, 0.03) << "nu " << nu << ", strain " << strain;
     }
   }

@@ -15,8 +15,8 @@
 #include <omp.h>
 #endif
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/forces.h"
 #include "forces/force_engine.h"
@@ -53,7 +53,8 @@ State disturbed_state(const Model& model, bool crushed) {
   state.positions = test::perturbed(model, 1e-3);
   state.velocities = test::perturbed(model, 0.1) - model.rest_positions;
   if (crushed) {
-    for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes[middle_cell(model)][corner]) -= 0.015;
+    for (int corner = 4; corner < 8; ++corner)
+      state.positions(2, model.cell_nodes[middle_cell(model)][corner]) -= 0.015;
   }
   return state;
 }
@@ -162,7 +163,8 @@ TEST(Forces, ThreadCountDoesNotChangeABit) {
   for (int i = 0; i < 11; ++i) {
     for (int j = 0; j < 11; ++j) {
       for (int k = 0; k < 29; ++k) {  // semi-axes 5, 5 and 14 cells
-        if ((i - 5) * (i - 5) / 25.0 + (j - 5) * (j - 5) / 25.0 + (k - 14) * (k - 14) / 196.0 <= 1.0) ellipsoid.cells.push_back({i, j, k});
+        if ((i - 5) * (i - 5) / 25.0 + (j - 5) * (j - 5) / 25.0 + (k - 14) * (k - 14) / 196.0 <= 1.0)
+          ellipsoid.cells.push_back({i, j, k});
       }
     }
   }
@@ -211,28 +213,28 @@ TEST(Forces, BlocksAndTheirHalosGiveTheForcesOfOneBlock) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
   for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
-   for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
-    LatticeDesc desc = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
-    desc.model = cell_model;
-    desc.law = law;
-    Result<Model> built = build_model(desc);
-    ASSERT_TRUE(built.ok()) << built.message();
-    const Model& blocked = built.value();  // on the spring lists, which the blocks cut
-    const Model& whole = blocked;          // in one block of every node
-    ASSERT_GE(split_force_blocks(blocked).count(), 2) << "too few springs for 2 blocks";
-    const State state = disturbed_state(blocked, true);  // a crushed cell too
-    Loads loads;
-    loads.gravity = {0, 0, -9.81};
-    ForceWorkspace blocked_ws, whole_ws;
-    use_one_block(whole, whole_ws);
-    Eigen::Matrix3Xd by_blocks, at_once;
-    compute_forces(blocked, state, loads, on_spring_lists(ForceOptions{true, 2}), blocked_ws, by_blocks);
-    compute_forces(whole, state, loads, on_spring_lists(ForceOptions{true, 1}), whole_ws, at_once);
-    ASSERT_EQ(whole_ws.engine->blocks.count(), 1);
-    const double scale = at_once.cwiseAbs().maxCoeff();
-    EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale)
-        << cell_model_name(cell_model) << ", " << cell_law_name(law);
-   }
+    for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
+      LatticeDesc desc = box_lattice({16, 12, 8}, Eigen::Vector3d::Constant(0.01), damped);
+      desc.model = cell_model;
+      desc.law = law;
+      Result<Model> built = build_model(desc);
+      ASSERT_TRUE(built.ok()) << built.message();
+      const Model& blocked = built.value();  // on the spring lists, which the blocks cut
+      const Model& whole = blocked;          // in one block of every node
+      ASSERT_GE(split_force_blocks(blocked).count(), 2) << "too few springs for 2 blocks";
+      const State state = disturbed_state(blocked, true);  // a crushed cell too
+      Loads loads;
+      loads.gravity = {0, 0, -9.81};
+      ForceWorkspace blocked_ws, whole_ws;
+      use_one_block(whole, whole_ws);
+      Eigen::Matrix3Xd by_blocks, at_once;
+      compute_forces(blocked, state, loads, on_spring_lists(ForceOptions{true, 2}), blocked_ws, by_blocks);
+      compute_forces(whole, state, loads, on_spring_lists(ForceOptions{true, 1}), whole_ws, at_once);
+      ASSERT_EQ(whole_ws.engine->blocks.count(), 1);
+      const double scale = at_once.cwiseAbs().maxCoeff();
+      EXPECT_LT((by_blocks - at_once).cwiseAbs().maxCoeff(), 1e-12 * scale)
+          << cell_model_name(cell_model) << ", " << cell_law_name(law);
+    }
   }
 }
 
@@ -280,37 +282,37 @@ TEST(Forces, GridPassesGiveTheForcesOfTheSpringLists) {
       {"box along x, inclusion", along_x, 0},
       {"exact-bending box along y", exact_along_y, 1}};
   for (const auto& [body, body_desc, major_axis] : bodies) {
-   for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
-    LatticeDesc desc = body_desc;
-    desc.law = law;
-    const std::string name = std::string(body) + ", " + cell_law_name(law);
-    Result<Model> built = build_model(desc);
-    ASSERT_TRUE(built.ok()) << built.message();
-    const Model& grid = built.value();
-    ASSERT_TRUE(uses_grid_passes(grid)) << name;
-    ASSERT_EQ(grid.major_axis, major_axis) << name;
-    const Model& lists = grid;  // with on_spring_lists
-    for (const bool crushed : {false, true}) {
-      State state = disturbed_state(grid, crushed);
-      if (crushed) {
-        ASSERT_LT(cell_signed_volume(grid, state.positions, middle_cell(grid)), 0.0) << name;
-        const auto& ends = grid.spring_nodes[grid.num_springs() / 3];
-        state.positions.col(ends[1]) = state.positions.col(ends[0]);
-      }
-      Loads loads;
-      loads.gravity = {0, 0, -9.81};
-      for (const bool damping : {true, false}) {
-        ForceWorkspace grid_ws, lists_ws;
-        Eigen::Matrix3Xd by_grid, by_lists;
-        compute_forces(grid, state, loads, ForceOptions{damping, 1}, grid_ws, by_grid);
-        compute_forces(lists, state, loads, on_spring_lists(ForceOptions{damping, 1}), lists_ws, by_lists);
-        ASSERT_TRUE(by_grid.allFinite()) << name;
-        const double scale = by_lists.cwiseAbs().maxCoeff();
-        EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale)
-            << name << (crushed ? ", crushed" : "") << (damping ? "" : ", no damping");
+    for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
+      LatticeDesc desc = body_desc;
+      desc.law = law;
+      const std::string name = std::string(body) + ", " + cell_law_name(law);
+      Result<Model> built = build_model(desc);
+      ASSERT_TRUE(built.ok()) << built.message();
+      const Model& grid = built.value();
+      ASSERT_TRUE(uses_grid_passes(grid)) << name;
+      ASSERT_EQ(grid.major_axis, major_axis) << name;
+      const Model& lists = grid;  // with on_spring_lists
+      for (const bool crushed : {false, true}) {
+        State state = disturbed_state(grid, crushed);
+        if (crushed) {
+          ASSERT_LT(cell_signed_volume(grid, state.positions, middle_cell(grid)), 0.0) << name;
+          const auto& ends = grid.spring_nodes[grid.num_springs() / 3];
+          state.positions.col(ends[1]) = state.positions.col(ends[0]);
+        }
+        Loads loads;
+        loads.gravity = {0, 0, -9.81};
+        for (const bool damping : {true, false}) {
+          ForceWorkspace grid_ws, lists_ws;
+          Eigen::Matrix3Xd by_grid, by_lists;
+          compute_forces(grid, state, loads, ForceOptions{damping, 1}, grid_ws, by_grid);
+          compute_forces(lists, state, loads, on_spring_lists(ForceOptions{damping, 1}), lists_ws, by_lists);
+          ASSERT_TRUE(by_grid.allFinite()) << name;
+          const double scale = by_lists.cwiseAbs().maxCoeff();
+          EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale)
+              << name << (crushed ? ", crushed" : "") << (damping ? "" : ", no damping");
+        }
       }
     }
-   }
   }
 }
 
@@ -382,7 +384,8 @@ TEST(Forces, OneMaterialsConstantsGiveThePerPointArraysBits) {
       Result<Model> built = build_model(desc);
       ASSERT_TRUE(built.ok()) << built.message();
       const Model& constants = built.value();
-      const std::string what = std::string(cell_model_name(cell_model)) + ", " + std::to_string(desc.cells.size()) + " cells";
+      const std::string what =
+          std::string(cell_model_name(cell_model)) + ", " + std::to_string(desc.cells.size()) + " cells";
       const std::shared_ptr<const GridLayout> grid = build_grid_layout(constants);
       ASSERT_NE(grid, nullptr) << what;
       ASSERT_TRUE(grid->uniform_cells) << what;
@@ -407,7 +410,8 @@ TEST(Forces, OneMaterialsConstantsGiveThePerPointArraysBits) {
   Material stiff = damped;
   stiff.young_modulus *= 20.0;
   inclusion.materials.push_back(stiff);
-  for (const Eigen::Vector3i& cell : inclusion.cells) inclusion.cell_material.push_back(cell == Eigen::Vector3i(2, 2, 2) ? 1 : 0);
+  for (const Eigen::Vector3i& cell : inclusion.cells)
+    inclusion.cell_material.push_back(cell == Eigen::Vector3i(2, 2, 2) ? 1 : 0);
   Result<Model> built = build_model(inclusion);
   ASSERT_TRUE(built.ok()) << built.message();
   const std::shared_ptr<const GridLayout> grid = build_grid_layout(built.value());
@@ -431,7 +435,9 @@ TEST(Forces, GridPassesTakeAChangedSpringOrCell) {
     const Model& before = built.value();
     const auto axes_spanned = [&](int spring) {
       return (before.node_grid_index[before.spring_nodes[spring][1]] -
-              before.node_grid_index[before.spring_nodes[spring][0]]).cwiseAbs().sum();
+              before.node_grid_index[before.spring_nodes[spring][0]])
+          .cwiseAbs()
+          .sum();
     };
     int diagonal = 0;  // the first spring whose ends differ along every axis
     while (axes_spanned(diagonal) != 3) ++diagonal;
@@ -464,7 +470,8 @@ TEST(Forces, GridPassesTakeAChangedSpringOrCell) {
       compute_forces(lists, state, Loads{}, on_spring_lists(ForceOptions{true, 1}), ws, by_lists);
       compute_forces(before, state, Loads{}, ForceOptions{true, 1}, ws, unchanged);
       const double scale = by_lists.cwiseAbs().maxCoeff();
-      const std::string what = std::string(cell_model_name(cell_model)) + ", change " + std::to_string(static_cast<int>(change));
+      const std::string what =
+          std::string(cell_model_name(cell_model)) + ", change " + std::to_string(static_cast<int>(change));
       ASSERT_GT((by_lists - unchanged).cwiseAbs().maxCoeff(), 1e-9 * scale) << what;
       EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * scale) << what;
       EXPECT_TRUE(by_kept == by_grid) << what;
@@ -507,7 +514,8 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
     compute_forces(grid, state, loads, ForceOptions{true, 1}, ws, one);
     for (const int threads : {2, 3, 4}) {
       compute_forces(grid, state, loads, ForceOptions{true, threads}, ws, many);
-      EXPECT_EQ(std::memcmp(one.data(), many.data(), sizeof(double) * one.size()), 0) << name << ", " << threads << " threads";
+      EXPECT_EQ(std::memcmp(one.data(), many.data(), sizeof(double) * one.size()), 0)
+          << name << ", " << threads << " threads";
     }
     compute_forces(lists, state, loads, on_spring_lists(ForceOptions{true, 2}), ws, by_lists);
     EXPECT_LT((one - by_lists).cwiseAbs().maxCoeff(), 1e-12 * by_lists.cwiseAbs().maxCoeff()) << name;
@@ -633,7 +641,7 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
       for (int kind = 0; kind < 5; ++kind) {
         for (const double determinant : {0.19, 0.21}) {
           Eigen::Matrix3d map = Eigen::Matrix3d::Identity();
-          map(kind % 3, kind % 3) = determinant;  // kinds 0-2: along x, y, z
+          map(kind % 3, kind % 3) = determinant;                 // kinds 0-2: along x, y, z
           if (kind == 3) map = slant * map * slant.transpose();  // along a slanted axis
           if (kind == 4) map = shear * map;
           ASSERT_NEAR(map.determinant(), determinant, 1e-12);
@@ -643,7 +651,8 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
           }
           int expected = 0;
           for (int c = 0; c < model.num_cells(); ++c) {
-            expected += cell_signed_volume(model, state.positions, c) < kCrushedVolumeFraction * model.rest_cell_volume();
+            expected +=
+                cell_signed_volume(model, state.positions, c) < kCrushedVolumeFraction * model.rest_cell_volume();
           }
           ASSERT_EQ(expected, determinant < kCrushedVolumeFraction ? 1 : 0);  // the neighbours stay whole
           const std::string what = ::testing::PrintToString(cells.transpose()) + ", " + cell_model_name(cell_model) +
@@ -651,8 +660,7 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
           std::vector<double> scratch;
           GridSplit split;
           Eigen::Matrix3Xd forces;
-          EXPECT_EQ(grid_spring_forces(*grid, state, true, 1, scratch, split, forces).crushed, expected)
-              << what;
+          EXPECT_EQ(grid_spring_forces(*grid, state, true, 1, scratch, split, forces).crushed, expected) << what;
           const int layers = grid->points.z();
           const int layer = model.node_grid_index[model.cell_nodes[cell][0]][model.major_axis];
           std::vector<std::vector<int>> splits;
@@ -661,8 +669,7 @@ TEST(Forces, GridPassesFindTheCellsTheirVolumeSaysAreCrushed) {
           for (const std::vector<int>& first_layers : splits) {
             split = GridSplit{first_layers, {}, 0, true};
             const int threads = static_cast<int>(first_layers.size()) - 1;
-            EXPECT_EQ(grid_spring_forces(*grid, state, true, threads, scratch, split, forces).crushed,
-                      expected)
+            EXPECT_EQ(grid_spring_forces(*grid, state, true, threads, scratch, split, forces).crushed, expected)
                 << what << ", split " << ::testing::PrintToString(first_layers);
             ASSERT_EQ(split.first_layers, first_layers) << what << ": the split was not used as it was";
           }
@@ -738,7 +745,8 @@ TEST(Forces, GridSplitsFollowTheThreadsAndKeepTheBits) {
     for (int call = 0; call < 6 * 8; ++call) compute_forces(model, state, loads, ForceOptions{true, 3}, ws, three);
     const std::vector<int>& first = ws.grid_split.first_layers;
     EXPECT_GE(std::abs(first[2] - boundary), 2) << boundary;
-    EXPECT_TRUE(first[0] <= first[1] && first[1] <= first[2] && first[2] <= first[3]) << ::testing::PrintToString(first);
+    EXPECT_TRUE(first[0] <= first[1] && first[1] <= first[2] && first[2] <= first[3])
+        << ::testing::PrintToString(first);
     EXPECT_EQ(std::memcmp(one.data(), three.data(), sizeof(double) * one.size()), 0);
   }
 }
@@ -759,7 +767,8 @@ TEST(Forces, AWorkspaceMovedToAnotherBodyForgetsTheFirst) {
   Eigen::Matrix3Xd forces, expected;
   compute_forces(first, first_state, Loads{}, ForceOptions{}, shared, forces);
   compute_forces(second, second_state, Loads{}, ForceOptions{}, own, expected);
-  ASSERT_EQ(shared.grid_arrays.size(), own.grid_arrays.size()) << "the bodies no longer test a workspace of the same size";
+  ASSERT_EQ(shared.grid_arrays.size(), own.grid_arrays.size())
+      << "the bodies no longer test a workspace of the same size";
   compute_forces(second, second_state, Loads{}, ForceOptions{}, shared, forces);
   EXPECT_EQ(std::memcmp(forces.data(), expected.data(), sizeof(double) * forces.size()), 0);
 }

@@ -7,8 +7,8 @@
 #include <numeric>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "cubespring/lattice.h"
 #include "cubespring/static_solver.h"

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -94,7 +94,8 @@ TEST(Integrator, ConservesLinearMomentumWithoutExternalForce) {
   Material m = test::notes_material(0.3);
   m.stiffness_damping = 1e-4;  // internal damping exchanges no momentum
   const Model model = test::box_model({3, 3, 3}, m);
-  for (Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet, Integrator::kImplicitEuler}) {
+  for (Integrator integrator :
+       {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet, Integrator::kImplicitEuler}) {
     State state = wobbling_block(model);
     const Eigen::Vector3d momentum = state.velocities * model.mass;
     StepSettings settings;
@@ -142,7 +143,8 @@ TEST(Integrator, StableTimeStepSeparatesStableFromUnstable) {
     settings.time_step = factor * limit;
     Stepper stepper(model);
     StepReport report;
-    for (int i = 0; i < 3000 && report.ok(); ++i) report = stepper.step(model, Constraints(model), Loads{}, settings, state);
+    for (int i = 0; i < 3000 && report.ok(); ++i)
+      report = stepper.step(model, Constraints(model), Loads{}, settings, state);
     EXPECT_EQ(report.ok(), stable) << factor << " x " << limit << ": " << report.message;
     EXPECT_TRUE(state.positions.allFinite());
   }
@@ -175,8 +177,8 @@ TEST(Integrator, ANonFiniteStepIsReportedAndLeavesTheState) {
         const State before = state;
         Stepper stepper(*model);
         const StepReport report = stepper.step(*model, Constraints(*model), Loads{}, settings, state);
-        const std::string what = std::string(layout) + ", " + integrator_name(integrator) +
-                                 (overflow ? ", overflow" : ", NaN");
+        const std::string what =
+            std::string(layout) + ", " + integrator_name(integrator) + (overflow ? ", overflow" : ", NaN");
         EXPECT_EQ(report.status, StepStatus::kUnstable) << what;
         EXPECT_NE(report.message.find("NaN or infinite"), std::string::npos) << what << ": " << report.message;
         const auto bytes = sizeof(double) * static_cast<std::size_t>(state.positions.size());
@@ -201,7 +203,8 @@ TEST(Integrator, ADrivenNodeWithAnInfiniteSpeedIsReported) {
     for (const bool crushed : {false, true}) {
       for (Integrator integrator :
            {Integrator::kSymplecticEuler, Integrator::kVelocityVerlet, Integrator::kImplicitEuler}) {
-        const std::string what = std::string(layout) + ", " + integrator_name(integrator) + (crushed ? ", crushed" : "");
+        const std::string what =
+            std::string(layout) + ", " + integrator_name(integrator) + (crushed ? ", crushed" : "");
         State state = rest_state(*model);
         if (crushed) {  // the last cell's top face pushed through its bottom
           for (int corner = 4; corner < 8; ++corner) state.positions(2, model->cell_nodes.back()[corner]) -= 0.015;
@@ -227,7 +230,7 @@ TEST(Integrator, AnUnstableStepNamesItsFastestNodeAndACrushedCell) {
   for (const bool crushed : {false, true}) {
     State state = rest_state(model);
     state.velocities.col(5) = Eigen::Vector3d(1e4, 0, 0);  // far above any wave speed
-    if (crushed) {  // the last cell's top face pushed through its bottom
+    if (crushed) {                                         // the last cell's top face pushed through its bottom
       for (int corner = 4; corner < 8; ++corner) state.positions(2, model.cell_nodes.back()[corner]) -= 0.015;
     }
     StepSettings settings;
@@ -258,7 +261,8 @@ TEST(Integrator, ImplicitEulerIsStableWhereExplicitBlowsUp) {
   State explicit_state = rest_state(model);
   Stepper explicit_stepper(model);
   StepReport report;
-  for (int i = 0; i < 100 && report.ok(); ++i) report = explicit_stepper.step(model, clamp, loads, settings, explicit_state);
+  for (int i = 0; i < 100 && report.ok(); ++i)
+    report = explicit_stepper.step(model, clamp, loads, settings, explicit_state);
   EXPECT_EQ(report.status, StepStatus::kUnstable);
   // the message names the step taken and where to find the body's limit
   EXPECT_NE(report.message.find("time step of 0.01 s"), std::string::npos) << report.message;
@@ -500,9 +504,9 @@ void expect_every_step_is_forces_then_kicks(Integrator integrator) {
     State start = wobbling_block(large);
     if (crushed_cell >= 0) crush_cell(large, crushed_cell, start);
     for (const int threads : {1, 2, 3}) {
-      expect_step_is_forces_then_kick(large, driven, loads, start, dt, threads,
-                                      std::to_string(threads) + " threads, crushed cell " +
-                                          std::to_string(crushed_cell));
+      expect_step_is_forces_then_kick(
+          large, driven, loads, start, dt, threads,
+          std::to_string(threads) + " threads, crushed cell " + std::to_string(crushed_cell));
     }
   }
 }
@@ -629,7 +633,8 @@ TEST(Integrator, RefusesInputsThatDoNotFitTheBody) {
       {"constraints", rest, Loads{}, Constraints(other), StepSettings{}, &model,
        "the constraints are for a body of 36 nodes; this one has 27"},
       {"speed limit", rest, Loads{}, Constraints(model), nan_limit, &model, "speed_limit = nan"},
-      {"stepper", rest, Loads{}, Constraints(model), StepSettings{}, &other, "the stepper was made for a body of 36 nodes"},
+      {"stepper", rest, Loads{}, Constraints(model), StepSettings{}, &other,
+       "the stepper was made for a body of 36 nodes"},
   };
   for (const Case& c : cases) {
     for (const Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kImplicitEuler}) {
@@ -667,7 +672,7 @@ TEST(Integrator, RefusesInputsThatDoNotFitTheBody) {
 TEST(Integrator, RefusesBadSolverSettings) {
   const Model model = test::box_model({1, 1, 1}, Material{});
   for (const auto& [tolerance, iterations] : {std::pair{0.0, 10}, std::pair{1e-6, 0}, std::pair{std::nan(""), 10},
-                                         std::pair{std::numeric_limits<double>::infinity(), 10}}) {
+                                              std::pair{std::numeric_limits<double>::infinity(), 10}}) {
     State state = rest_state(model);
     StepSettings settings;
     settings.integrator = Integrator::kImplicitEuler;

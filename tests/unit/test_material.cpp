@@ -55,21 +55,21 @@ Material with(double Material::*field, double value) {
   return m;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    BadValues, MaterialRejects,
-    ::testing::Values(BadField{"young_modulus", with(&Material::young_modulus, 0.0)},
-                      BadField{"young_modulus", with(&Material::young_modulus, -1.0)},
-                      BadField{"young_modulus", with(&Material::young_modulus, std::nan(""))},
-                      // finite, but lambda + 2G overflows; or so small that G underflows
-                      BadField{"young_modulus", with(&Material::young_modulus, 1.7e308)},
-                      BadField{"young_modulus", with(&Material::young_modulus, 1e-310)},
-                      BadField{"poisson_ratio", with(&Material::poisson_ratio, 0.5)},
-                      BadField{"poisson_ratio", with(&Material::poisson_ratio, 0.7)},
-                      BadField{"poisson_ratio", with(&Material::poisson_ratio, -0.25)},
-                      BadField{"density", with(&Material::density, 0.0)},
-                      BadField{"density", with(&Material::density, std::numeric_limits<double>::infinity())},
-                      BadField{"mass_damping", with(&Material::mass_damping, -1.0)},
-                      BadField{"stiffness_damping", with(&Material::stiffness_damping, -1e-3)}));
+INSTANTIATE_TEST_SUITE_P(BadValues, MaterialRejects,
+                         ::testing::Values(BadField{"young_modulus", with(&Material::young_modulus, 0.0)},
+                                           BadField{"young_modulus", with(&Material::young_modulus, -1.0)},
+                                           BadField{"young_modulus", with(&Material::young_modulus, std::nan(""))},
+                                           // finite, but lambda + 2G overflows; or so small that G underflows
+                                           BadField{"young_modulus", with(&Material::young_modulus, 1.7e308)},
+                                           BadField{"young_modulus", with(&Material::young_modulus, 1e-310)},
+                                           BadField{"poisson_ratio", with(&Material::poisson_ratio, 0.5)},
+                                           BadField{"poisson_ratio", with(&Material::poisson_ratio, 0.7)},
+                                           BadField{"poisson_ratio", with(&Material::poisson_ratio, -0.25)},
+                                           BadField{"density", with(&Material::density, 0.0)},
+                                           BadField{"density",
+                                                    with(&Material::density, std::numeric_limits<double>::infinity())},
+                                           BadField{"mass_damping", with(&Material::mass_damping, -1.0)},
+                                           BadField{"stiffness_damping", with(&Material::stiffness_damping, -1e-3)}));
 
 TEST(Material, MessageGivesTheAllowedRange) {
   const Status status = validate(with(&Material::poisson_ratio, 0.5));

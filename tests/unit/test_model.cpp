@@ -28,9 +28,9 @@ TEST(Model, MassIsLumpedAnEighthPerCorner) {
   const Model model = test::box_model({3, 3, 3}, m);
   const double cell_mass = m.density * 1e-6;
   EXPECT_NEAR(model.total_mass(), m.density * 27e-6, 1e-15);
-  EXPECT_NEAR(model.mass[model.node_at({0, 0, 0})], cell_mass / 8, 1e-18);   // corner
-  EXPECT_NEAR(model.mass[model.node_at({1, 1, 1})], cell_mass, 1e-18);       // interior
-  EXPECT_NEAR(model.mass[model.node_at({1, 0, 0})], cell_mass / 4, 1e-18);   // edge
+  EXPECT_NEAR(model.mass[model.node_at({0, 0, 0})], cell_mass / 8, 1e-18);  // corner
+  EXPECT_NEAR(model.mass[model.node_at({1, 1, 1})], cell_mass, 1e-18);      // interior
+  EXPECT_NEAR(model.mass[model.node_at({1, 0, 0})], cell_mass / 4, 1e-18);  // edge
 }
 
 TEST(Model, SharedEdgesSumTheirCellsStiffness) {
@@ -137,8 +137,8 @@ TEST(Model, NodesAreNumberedAlongTheLongAxisOfABigEnoughBox) {
     int major_axis;
   };
   // 21 x 16 x 16 nodes: layers across x of 256; 21 x 16 x 15: of 240, too few; ties go to z, then y
-  for (const Case& c : {Case{{20, 15, 15}, 0}, Case{{20, 15, 14}, 2}, Case{{15, 20, 15}, 1},
-                        Case{{15, 15, 20}, 2}, Case{{20, 20, 15}, 1}, Case{{20, 20, 20}, 2}}) {
+  for (const Case& c : {Case{{20, 15, 15}, 0}, Case{{20, 15, 14}, 2}, Case{{15, 20, 15}, 1}, Case{{15, 15, 20}, 2},
+                        Case{{20, 20, 15}, 1}, Case{{20, 20, 20}, 2}}) {
     const Model model = test::box_model(c.cells, Material{});
     ASSERT_EQ(model.major_axis, c.major_axis) << c.cells.transpose();
     const int fast = (c.major_axis + 1) % 3, middle = (c.major_axis + 2) % 3;

@@ -8,8 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/experiments.h"
 #include "cubespring/static_solver.h"
@@ -43,9 +43,7 @@ double closed_form_density(const Material& m, const Eigen::Matrix3d& f) {
   return w;
 }
 
-Eigen::Matrix3Xd deformed(const Model& model, const Eigen::Matrix3d& f) {
-  return f * model.rest_positions;
-}
+Eigen::Matrix3Xd deformed(const Model& model, const Eigen::Matrix3d& f) { return f * model.rest_positions; }
 
 Eigen::Matrix3d rotation(double angle, const Eigen::Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
@@ -108,7 +106,8 @@ TEST_P(NeoHookeanCell, DerivativesHoldWhereTheBarrierIsContinuedAndInverted) {
     ASSERT_LT(largest, 0.05) << "J " << j;
     const Eigen::Matrix3Xd forces = test::elastic_forces(model, x);
     ASSERT_TRUE(forces.allFinite());
-    EXPECT_LT((test::finite_difference_forces(model, x) - forces).cwiseAbs().maxCoeff(), 1e-6 * forces.cwiseAbs().maxCoeff())
+    EXPECT_LT((test::finite_difference_forces(model, x) - forces).cwiseAbs().maxCoeff(),
+              1e-6 * forces.cwiseAbs().maxCoeff())
         << "J " << j;
     const Eigen::MatrixXd k = test::dense_stiffness(model, x, StiffnessKind::kExact);
     EXPECT_LT((k - test::finite_difference_stiffness(model, x)).cwiseAbs().maxCoeff(), 1e-5 * k.cwiseAbs().maxCoeff())
@@ -131,7 +130,8 @@ TEST_P(NeoHookeanCell, EnergyAndForcesAreRotationInvariant) {
   const Eigen::Matrix3d r = rotation(2.1, {-1, 0.5, 2});
   EXPECT_NEAR(elastic_energy(model, r * x), elastic_energy(model, x), 1e-10 * elastic_energy(model, x));
   const Eigen::Matrix3Xd forces = test::elastic_forces(model, x);
-  EXPECT_LT((test::elastic_forces(model, r * x) - r * forces).cwiseAbs().maxCoeff(), 1e-9 * forces.cwiseAbs().maxCoeff());
+  EXPECT_LT((test::elastic_forces(model, r * x) - r * forces).cwiseAbs().maxCoeff(),
+            1e-9 * forces.cwiseAbs().maxCoeff());
 }
 
 // Under any homogeneous deformation the lattice stores exactly the law's energy, whatever the
@@ -152,7 +152,8 @@ TEST_P(NeoHookeanCell, HomogeneousDeformationsStoreTheClosedFormEnergy) {
       for (const Eigen::Matrix3d& r : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), rotation(0.7, {1, 1, 0})}) {
         const double expected = volume * closed_form_density(model.materials[0], r * f);
         EXPECT_NEAR(elastic_energy(model, deformed(model, r * f)), expected, 1e-9 * std::max(1e-6, std::abs(expected)))
-            << "nu " << poisson << ", F\n" << r * f;
+            << "nu " << poisson << ", F\n"
+            << r * f;
       }
     }
   }
@@ -202,8 +203,9 @@ TEST_P(NeoHookeanCell, BarrierGrowsWithoutBoundAsTheVolumeVanishes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothCellModels, NeoHookeanCell,
-                         ::testing::Values(CellModel::kBaudet2007, CellModel::kExactBending),
-                         [](const auto& test) { return test.param == CellModel::kBaudet2007 ? "Baudet2007" : "ExactBending"; });
+                         ::testing::Values(CellModel::kBaudet2007, CellModel::kExactBending), [](const auto& test) {
+                           return test.param == CellModel::kBaudet2007 ? "Baudet2007" : "ExactBending";
+                         });
 
 // E, nu, B and G at small strain, from the virtual experiments, for either cell model.
 TEST(NeoHookeanLaw, SmallStrainModuliAreExact) {
@@ -219,8 +221,8 @@ TEST(NeoHookeanLaw, SmallStrainModuliAreExact) {
         ASSERT_TRUE(result.ok()) << result.message();
         const Moduli& measured = result.value().measured;
         const Moduli& expected = result.value().expected;
-        const std::string where = std::string(experiment_name(experiment)) + ", nu " + std::to_string(poisson) +
-                                  ", " + cell_model_name(cell_model);
+        const std::string where = std::string(experiment_name(experiment)) + ", nu " + std::to_string(poisson) + ", " +
+                                  cell_model_name(cell_model);
         if (measured.young_modulus) {
           EXPECT_NEAR(*measured.young_modulus / *expected.young_modulus, 1.0, 1e-3) << where;
         }

@@ -76,8 +76,8 @@ TEST(StableTimeStep, StiffnessDampingShortensTheStep) {
   const Model model = test::box_model({3, 2, 2}, damped);
   const double omega = max_frequency(model, FrequencyBound::kLanczos);
   const double zeta = 0.5 * 1e-4 * omega;
-  EXPECT_NEAR(max_stable_time_step(model, FrequencyBound::kLanczos) * omega / 2.0,
-              std::sqrt(1.0 + zeta * zeta) - zeta, 1e-12);
+  EXPECT_NEAR(max_stable_time_step(model, FrequencyBound::kLanczos) * omega / 2.0, std::sqrt(1.0 + zeta * zeta) - zeta,
+              1e-12);
 }
 
 // Symplectic Euler on an undamped free body with random velocities: bounded at 0.99 of the
@@ -190,7 +190,7 @@ TEST(CompressedStepFactor, IsTheThinnestOfManyCells) {
   };
   std::mt19937 random(7);
   std::uniform_real_distribution<double> jitter(-0.003, 0.003);
-  int between = 0;  // trials whose factor is neither bound: a cell decides it
+  int between = 0;                // trials whose factor is neither bound: a cell decides it
   int inverted = 0, widened = 0;  // trials with a cell inside out, a face over twice its rest area
   for (int trial = 0; trial < 60; ++trial) {
     Eigen::Matrix3Xd x = model.rest_positions;

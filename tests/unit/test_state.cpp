@@ -142,8 +142,8 @@ TEST(Constraints, AFrictionlessSupportHoldsOneComponentAndLetsTheOthersSlide) {
   Constraints constraints(model);
   const double strain = 1e-4, length = 0.04, width = 0.02;
   ASSERT_TRUE(constraints.prescribe_box_axis_displacement(model, {-1, -1, -1}, {1e-9, 1, 1}, 0, 0.0).ok());
-  ASSERT_TRUE(constraints.prescribe_box_axis_displacement(model, {length - 1e-9, -1, -1}, {1, 1, 1}, 0,
-                                                          strain * length).ok());
+  ASSERT_TRUE(
+      constraints.prescribe_box_axis_displacement(model, {length - 1e-9, -1, -1}, {1, 1, 1}, 0, strain * length).ok());
   const int corner = model.node_at({0, 0, 0});
   const int beside = model.node_at({0, 2, 0});
   ASSERT_TRUE(constraints.prescribe_axis_position(corner, 1, model.rest_positions(1, corner)).ok());
@@ -185,7 +185,8 @@ TEST(Constraints, ANodeDrivenAlongOneAxisIsFreeAlongTheOthers) {
   EXPECT_NEAR(state.velocities(2, node), 1e-6 / 1e-5, 1e-9);
   const int free_node = model.node_at({2, 1, 1});
   EXPECT_LT(state.positions(0, node), model.rest_positions(0, node));
-  EXPECT_NEAR(state.velocities(0, node), state.velocities(0, free_node), 1e-3 * std::abs(state.velocities(0, free_node)));
+  EXPECT_NEAR(state.velocities(0, node), state.velocities(0, free_node),
+              1e-3 * std::abs(state.velocities(0, free_node)));
 }
 
 }  // namespace

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <vector>
 
-#include <Eigen/Dense>
 #include <gtest/gtest.h>
+#include <Eigen/Dense>
 
 #include "cubespring/constraints.h"
 #include "cubespring/experiments.h"
@@ -106,10 +106,9 @@ TEST(StaticSolver, WithoutEscapesAnUnstableEquilibriumIsReported) {
   EXPECT_NE(refused.message.find("max_instability_escapes"), std::string::npos) << refused.message;
 }
 
-
 // Continuation: solved from the equilibrium at 10% compression, the 20% one is the same state as
-// solved from rest (a stable, unique solution here: nu = 0.3, small enough not to buckle); and a cube under its own weight continued from half of it reaches the same
-// state as from rest.
+// solved from rest (a stable, unique solution here: nu = 0.3, small enough not to buckle); and a cube under its own
+// weight continued from half of it reaches the same state as from rest.
 TEST(StaticSolver, ContinuesFromAnEarlierSolution) {
   const Compressed at_10 = squeezed_cube(3, -0.1), at_20 = squeezed_cube(3, -0.2);
   State from_rest = rest_state(at_20.model);

@@ -5,9 +5,9 @@
 #include <set>
 #include <utility>
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
-#include <gtest/gtest.h>
 
 #include "cubespring/stiffness.h"
 #include "test_support.h"
@@ -18,7 +18,6 @@ namespace {
 using test::dense_stiffness;
 using test::finite_difference_stiffness;
 using test::zero_modes;
-
 
 // The pattern has a 3x3 block for every node with itself, the two ends of each spring and every
 // two corners of a cell, and nothing else: rows of sorted columns, compressed. An L of 3 cells
@@ -78,11 +77,12 @@ TEST(Stiffness, AssemblingAgainGivesWhatANewAssemblerGives) {
     EXPECT_NE(Eigen::MatrixXd(first), Eigen::MatrixXd(fresh));  // the first call's values are gone
     EXPECT_EQ(Eigen::MatrixXd(again), Eigen::MatrixXd(fresh));
     for (int call = 0; call < 2; ++call) {  // the second builds the pattern it handed over again
-      const SparseMatrix once = std::move(reused).assemble_once(model, x, kind, 1.0, 0.0);  // NOLINT(bugprone-use-after-move)
+      const SparseMatrix once =
+          std::move(reused).assemble_once(model, x, kind, 1.0, 0.0);  // NOLINT(bugprone-use-after-move)
       ASSERT_EQ(once.nonZeros(), fresh.nonZeros());
       EXPECT_EQ(Eigen::MatrixXd(once), Eigen::MatrixXd(fresh)) << call;
     }
-    SparseMatrix after;  // the pattern handed over is built again
+    SparseMatrix after;                                // the pattern handed over is built again
     reused.assemble(model, x, kind, 1.0, 0.0, after);  // NOLINT(bugprone-use-after-move)
     EXPECT_EQ(Eigen::MatrixXd(after), Eigen::MatrixXd(fresh));
   }

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/strain.h"
 #include "unit/test_support.h"

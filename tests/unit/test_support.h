@@ -6,9 +6,9 @@
 #include <limits>
 #include <random>
 
+#include <gtest/gtest.h>
 #include <Eigen/Dense>
 #include <Eigen/Eigenvalues>
-#include <gtest/gtest.h>
 
 #include "cubespring/forces.h"
 #include "cubespring/model.h"
@@ -70,7 +70,8 @@ inline Eigen::MatrixXd dense_stiffness(const Model& model, const Eigen::Matrix3X
 /// Zero eigenvalues (below 1e-9 of the largest) of a free body's stiffness at rest; fails the test
 /// if any eigenvalue is clearly negative.
 inline int zero_modes(const Model& model) {
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(dense_stiffness(model, model.rest_positions, StiffnessKind::kExact));
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(
+      dense_stiffness(model, model.rest_positions, StiffnessKind::kExact));
   const Eigen::VectorXd& values = solver.eigenvalues();
   EXPECT_GT(values.minCoeff(), -1e-9 * values.maxCoeff());
   return static_cast<int>((values.array().abs() < 1e-9 * values.maxCoeff()).count());

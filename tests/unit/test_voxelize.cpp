@@ -7,8 +7,8 @@
 #include <set>
 #include <tuple>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/model.h"
 #include "cubespring/shapes.h"
@@ -56,8 +56,9 @@ double closed_volume(const TriangleMesh& mesh) { return signed_volume(mesh, 0, m
 // its faces split so that 1% of its triangles is a few of them.
 TriangleMesh rotated_cube() {
   TriangleMesh cube = test::subdivide(box_mesh(Eigen::Vector3d::Constant(-0.5), Eigen::Vector3d::Constant(0.5)), 3);
-  const Eigen::Matrix3d turn = (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) *
-                                Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX())).toRotationMatrix();
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(0.4, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))
+          .toRotationMatrix();
   cube.vertices = (turn * cube.vertices).colwise() + Eigen::Vector3d(0.011, 0.023, -0.017);
   return cube;
 }
@@ -81,8 +82,8 @@ TEST(Voxelize, VolumeOfClosedPrimitivesWithinThreePercentAtTwentyCellsAcross) {
   for (const Primitive& p : primitives()) {
     const Voxelization v = voxelize_ok(p.mesh, across(20));
     EXPECT_NEAR(v.mesh_volume, std::abs(closed_volume(p.mesh)), 1e-12) << p.name;
-    EXPECT_LT(std::abs(v.relative_volume_difference()), 0.03) << p.name << ": voxel " << v.voxel_volume
-                                                               << " mesh " << v.mesh_volume;
+    EXPECT_LT(std::abs(v.relative_volume_difference()), 0.03)
+        << p.name << ": voxel " << v.voxel_volume << " mesh " << v.mesh_volume;
     EXPECT_TRUE(v.surface.clean()) << p.name;
     EXPECT_EQ(v.undecided_cells, 0) << p.name;
     EXPECT_EQ(v.connectivity.islands, 0) << p.name;
@@ -92,8 +93,8 @@ TEST(Voxelize, VolumeOfClosedPrimitivesWithinThreePercentAtTwentyCellsAcross) {
 TEST(Voxelize, HollowShellKeepsItsCavity) {
   const Voxelization v = voxelize_ok(hollow_mesh(sphere_mesh(1.0, 4), sphere_mesh(0.6, 4)), across(20));
   const CellSet cells = world_cells(v);
-  EXPECT_EQ(cells.count({0, 0, 0}), 0u);   // centre of the cavity
-  EXPECT_EQ(cells.count({7, 0, 0}), 1u);   // centre 0.75 from the middle: in the wall
+  EXPECT_EQ(cells.count({0, 0, 0}), 0u);  // centre of the cavity
+  EXPECT_EQ(cells.count({7, 0, 0}), 1u);  // centre 0.75 from the middle: in the wall
   const double shell = 4.0 / 3.0 * M_PI * (1.0 - 0.216);
   EXPECT_NEAR(v.voxel_volume, shell, 0.05 * shell);
 }
@@ -175,8 +176,8 @@ TEST(Voxelize, VerticesRepeatedPerTriangleAreJoinedFirst) {
 
 TEST(Voxelize, CountsMatchTheBuiltModel) {
   // a 3 x 4 x 5 block of 0.1 m cells, faces between cell centres
-  const Voxelization v = voxelize_ok(box_mesh(Eigen::Vector3d(0.02, 0.03, 0.01), Eigen::Vector3d(0.29, 0.38, 0.48)),
-                                     cell_size(0.1));
+  const Voxelization v =
+      voxelize_ok(box_mesh(Eigen::Vector3d(0.02, 0.03, 0.01), Eigen::Vector3d(0.29, 0.38, 0.48)), cell_size(0.1));
   ASSERT_EQ(v.cells.size(), 60u);
   const Result<Model> model = build_model(lattice_from_voxels(v, {Material{}}));
   ASSERT_TRUE(model.ok()) << model.message();

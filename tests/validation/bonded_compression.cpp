@@ -22,9 +22,7 @@ namespace {
 
 constexpr int kGridPoints = kPlatesGrid + 1;
 
-Eigen::Vector3d grid_point(int i, int j, int k) {
-  return Eigen::Vector3d(i, j, k) * (kPlatesSide / kPlatesGrid);
-}
+Eigen::Vector3d grid_point(int i, int j, int k) { return Eigen::Vector3d(i, j, k) * (kPlatesSide / kPlatesGrid); }
 
 }  // namespace
 
@@ -52,7 +50,8 @@ BondedCompressionRow solve_bonded_compression_with_calculix(double strain, int e
   if (elements % kPlatesGrid == 0) {
     for (int k = 0; k < kGridPoints; ++k) {
       for (int j = 0; j < kGridPoints; ++j) {
-        for (int i = 0; i < kGridPoints; ++i) row.grid_displacements.push_back(reference.displacement_at(grid_point(i, j, k)).value());
+        for (int i = 0; i < kGridPoints; ++i)
+          row.grid_displacements.push_back(reference.displacement_at(grid_point(i, j, k)).value());
       }
     }
   }
@@ -89,8 +88,8 @@ std::vector<BondedCompressionRow> read_bonded_compression_rows(const std::string
     int elements = 0, i = 0, j = 0, k = 0;
     Eigen::Vector3d u;
     char c[7] = {};
-    fields >> strain >> c[0] >> elements >> c[1] >> i >> c[2] >> j >> c[3] >> k >> c[4] >> u.x() >> c[5] >> u.y() >> c[6] >>
-        u.z();
+    fields >> strain >> c[0] >> elements >> c[1] >> i >> c[2] >> j >> c[3] >> k >> c[4] >> u.x() >> c[5] >> u.y() >>
+        c[6] >> u.z();
     std::vector<Eigen::Vector3d>& grid = nodes[{strain, elements}];
     if (!fields || i + kGridPoints * (j + kGridPoints * k) != static_cast<int>(grid.size())) {
       ADD_FAILURE() << nodes_path << ": cannot read the line '" << line << "' (or it is out of grid order)";
@@ -144,9 +143,8 @@ namespace {
 // corner nodes as trilinear cells, converges to the FE's own (0.07-0.2% at 16).
 
 std::map<double, BondedCompressionRow> converged_references(const std::string& data_dir) {
-  const std::vector<BondedCompressionRow> rows =
-      read_bonded_compression_rows(data_dir + "/calculix/bonded_compression.csv",
-                                   data_dir + "/calculix/bonded_compression_nodes.csv");
+  const std::vector<BondedCompressionRow> rows = read_bonded_compression_rows(
+      data_dir + "/calculix/bonded_compression.csv", data_dir + "/calculix/bonded_compression_nodes.csv");
   std::map<double, std::vector<BondedCompressionRow>> by_strain;
   for (const BondedCompressionRow& row : rows) by_strain[row.strain].push_back(row);
   std::map<double, BondedCompressionRow> finest;
@@ -209,12 +207,13 @@ void expect_lattice_follows_calculix(int cells, const std::string& data_dir) {
     const double displacement_error = error_sum / interior / travel;
     const double force_error = *r.platen_force / reference.platen_force - 1.0;
     const double volume_error = *r.volume_change - reference.volume_change;
-    std::printf("%d^3 cells, strain %.4f: platen force %.4f N (FE %.4f N, %+.2f%%), mean interior displacement "
-                "error %.2f%% of the travel (%d nodes), volume change %+.3f%% (FE %+.3f%%), bulge %.3f mm (FE %.3f "
-                "mm), least cell %.3f\n",
-                cells, strain, *r.platen_force, reference.platen_force, 100 * force_error, 100 * displacement_error,
-                interior, 100 * *r.volume_change, 100 * reference.volume_change, 1e3 * *r.bulge,
-                1e3 * reference.bulge, *r.least_cell_volume_ratio);
+    std::printf(
+        "%d^3 cells, strain %.4f: platen force %.4f N (FE %.4f N, %+.2f%%), mean interior displacement "
+        "error %.2f%% of the travel (%d nodes), volume change %+.3f%% (FE %+.3f%%), bulge %.3f mm (FE %.3f "
+        "mm), least cell %.3f\n",
+        cells, strain, *r.platen_force, reference.platen_force, 100 * force_error, 100 * displacement_error, interior,
+        100 * *r.volume_change, 100 * reference.volume_change, 1e3 * *r.bulge, 1e3 * reference.bulge,
+        *r.least_cell_volume_ratio);
     EXPECT_LT(std::abs(force_error), 0.05) << cells << " cells, strain " << strain;
     EXPECT_LT(displacement_error, 0.05) << cells << " cells, strain " << strain;
     EXPECT_LT(std::abs(volume_error), 0.01) << cells << " cells, strain " << strain;

@@ -17,8 +17,8 @@
 
 namespace cubespring::validation {
 
-inline constexpr double kPlatesSide = 0.08;         // [m]
-inline constexpr double kPlatesYoung = 15.3e3;      // [Pa]
+inline constexpr double kPlatesSide = 0.08;     // [m]
+inline constexpr double kPlatesYoung = 15.3e3;  // [Pa]
 inline constexpr double kPlatesPoisson = 0.499;
 inline constexpr std::array<double, 3> kPlatesStrains{-0.05, -0.125, -0.1825};  // nominal, along z
 /// The grid the committed displacements are on: 1 cm, 9 points along each side.
@@ -26,11 +26,11 @@ inline constexpr int kPlatesGrid = 8;
 
 /// One FE solution.
 struct BondedCompressionRow {
-  double strain = 0;          ///< nominal, along z (negative: compression)
-  int elements = 0;           ///< C3D20R elements along each side
-  double platen_force = 0;    ///< the top plate's force on the block along z [N]
-  double volume_change = 0;   ///< deformed / rest - 1
-  double bulge = 0;           ///< x displacement of the centre of the face x = L [m]
+  double strain = 0;         ///< nominal, along z (negative: compression)
+  int elements = 0;          ///< C3D20R elements along each side
+  double platen_force = 0;   ///< the top plate's force on the block along z [N]
+  double volume_change = 0;  ///< deformed / rest - 1
+  double bulge = 0;          ///< x displacement of the centre of the face x = L [m]
   /// Displacements [m] of the corner nodes on the kPlatesGrid grid, index i + 9 (j + 9 k); empty
   /// unless the mesh has them (elements a multiple of kPlatesGrid).
   std::vector<Eigen::Vector3d> grid_displacements;

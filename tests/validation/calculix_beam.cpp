@@ -26,9 +26,9 @@ constexpr double kIterativeMaxPoisson = 0.4;
 // mid-edge nodes (exactly one odd index) follow. Other points (face and
 // body centres) are not nodes of a 20-node brick and keep id 0.
 struct NodeGrid {
-  Eigen::Vector3i n;      // elements per axis
-  Eigen::Vector3i fine;   // 2n+1 points per axis
-  std::vector<int> id;    // (fine.x * fine.y * fine.z), 0 = no node
+  Eigen::Vector3i n;     // elements per axis
+  Eigen::Vector3i fine;  // 2n+1 points per axis
+  std::vector<int> id;   // (fine.x * fine.y * fine.z), 0 = no node
   int corner_count = 0;
   int node_count = 0;
 
@@ -53,20 +53,20 @@ struct NodeGrid {
   }
 
   std::size_t index(int a, int b, int c) const {
-    return static_cast<std::size_t>(a) + static_cast<std::size_t>(fine.x()) *
-                                             (static_cast<std::size_t>(b) + static_cast<std::size_t>(fine.y()) * c);
+    return static_cast<std::size_t>(a) +
+           static_cast<std::size_t>(fine.x()) * (static_cast<std::size_t>(b) + static_cast<std::size_t>(fine.y()) * c);
   }
 };
 
 std::string check_spec(const BeamReferenceSpec& spec) {
   for (int axis = 0; axis < 3; ++axis) {
     if (!std::isfinite(spec.size[axis]) || spec.size[axis] <= 0) {
-      return "beam size must be finite and > 0 on every axis, got " + format_double(spec.size[axis]) +
-             " on axis " + std::to_string(axis);
+      return "beam size must be finite and > 0 on every axis, got " + format_double(spec.size[axis]) + " on axis " +
+             std::to_string(axis);
     }
     if (spec.elements[axis] < 1 || spec.elements[axis] > 4096) {
-      return "elements must be in [1, 4096] on every axis, got " + std::to_string(spec.elements[axis]) +
-             " on axis " + std::to_string(axis);
+      return "elements must be in [1, 4096] on every axis, got " + std::to_string(spec.elements[axis]) + " on axis " +
+             std::to_string(axis);
     }
   }
   // keep ids well inside ccx's 32-bit integers and the deck of sane size
@@ -208,8 +208,7 @@ std::string build_deck(const BeamReferenceSpec& spec, const NodeGrid& grid) {
     // compressible neo-Hookean matching the small-strain E and nu
     const double shear_modulus = e / (2 * (1 + nu));
     const double bulk_modulus = e / (3 * (1 - 2 * nu));
-    deck += "*HYPERELASTIC, NEO HOOKE\n" + deck_number(shear_modulus / 2) + "," + deck_number(2 / bulk_modulus) +
-            "\n";
+    deck += "*HYPERELASTIC, NEO HOOKE\n" + deck_number(shear_modulus / 2) + "," + deck_number(2 / bulk_modulus) + "\n";
   } else {
     deck += "*ELASTIC\n" + deck_number(e) + "," + deck_number(nu) + "\n";
   }

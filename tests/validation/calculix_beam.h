@@ -93,5 +93,4 @@ struct BeamResult {
 /// back as an error.
 BeamResult compute_beam_reference(const BeamReferenceSpec& spec);
 
-
 }  // namespace cubespring::validation

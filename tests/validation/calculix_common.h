@@ -20,11 +20,8 @@ namespace cubespring::validation {
 /// corners 5-8 above them, mid-edge nodes 9-12 on the bottom edges (1-2, 2-3, 3-4, 4-1), 13-16 on
 /// the top edges, 17-20 on the vertical edges (1-5, 2-6, 3-7, 4-8). As in CalculiX's shape20h.f.
 constexpr std::array<std::array<int, 3>, 20> kBrickNodes{{
-    {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0},
-    {0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2},
-    {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0},
-    {1, 0, 2}, {2, 1, 2}, {1, 2, 2}, {0, 1, 2},
-    {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1},
+    {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2}, {1, 0, 0}, {2, 1, 0},
+    {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2}, {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1},
 }};
 
 /// A number as a deck field: ccx reads each field through its first 20 characters only.

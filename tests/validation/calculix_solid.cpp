@@ -29,7 +29,7 @@ Index3 zyx_key(int a, int b, int c) { return {c, b, a}; }
 
 struct Mesh {
   int n = 0;
-  double pitch = 0;  // h / (2n)
+  double pitch = 0;               // h / (2n)
   std::map<Index3, int> node_id;  // fine-grid {c, b, a} -> id
   int corner_count = 0;           // corners have ids 1..corner_count
   std::vector<std::array<int, 20>> elements;
@@ -49,8 +49,8 @@ std::string check_spec(const SolidReferenceSpec& spec) {
   for (const Eigen::Vector3i& cell : spec.cells) {
     if ((cell.array().abs() > kMaxCellIndex).any()) {
       return "cell indices must be in [-" + std::to_string(kMaxCellIndex) + ", " + std::to_string(kMaxCellIndex) +
-             "], got (" + std::to_string(cell.x()) + ", " + std::to_string(cell.y()) + ", " +
-             std::to_string(cell.z()) + ")";
+             "], got (" + std::to_string(cell.x()) + ", " + std::to_string(cell.y()) + ", " + std::to_string(cell.z()) +
+             ")";
     }
   }
   const double n = spec.elements_per_cell;
@@ -93,8 +93,8 @@ std::string build_mesh(const SolidReferenceSpec& spec, Mesh& mesh) {
   std::set<Index3> seen_cells;
   for (const Eigen::Vector3i& cell : spec.cells) {
     if (!seen_cells.insert({cell.x(), cell.y(), cell.z()}).second) {
-      return "cell (" + std::to_string(cell.x()) + ", " + std::to_string(cell.y()) + ", " +
-             std::to_string(cell.z()) + ") is listed twice";
+      return "cell (" + std::to_string(cell.x()) + ", " + std::to_string(cell.y()) + ", " + std::to_string(cell.z()) +
+             ") is listed twice";
     }
   }
   const int n = mesh.n;

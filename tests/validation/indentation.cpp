@@ -103,7 +103,7 @@ struct Mesh {
   std::vector<Node> nodes;
   std::string elements;  // *ELEMENT blocks
   int block_elements = 0;
-  int corner_line = 0;   // corners on the top face at y = 0: ids 1..corner_line, x growing
+  int corner_line = 0;         // corners on the top face at y = 0: ids 1..corner_line, x growing
   std::vector<double> line_x;  // their rest x
   std::vector<int> base, symmetry_x, symmetry_y, sphere;
   std::vector<int> slave_elements, master_elements;
@@ -126,7 +126,7 @@ void mesh_block(int mesh_level, Mesh& mesh) {
   const std::vector<double> xs = graded_axis(half, h);
   std::vector<double> zs = graded_axis(kIndentationThickness, h);  // depths from the top
   for (double& z : zs) z = kIndentationThickness - z;
-  std::reverse(zs.begin(), zs.end());                               // heights from the base
+  std::reverse(zs.begin(), zs.end());  // heights from the base
   const int nx = static_cast<int>(xs.size()) - 1, nz = static_cast<int>(zs.size()) - 1;
   const int fx = 2 * nx + 1, fz = 2 * nz + 1;
   auto coordinate = [](const std::vector<double>& corners, int a) {
@@ -387,7 +387,8 @@ std::vector<IndentationRow> solve_indentation_with_calculix(int mesh_level, cons
   const Mesh mesh = make_mesh(mesh_level);
   // run_ccx checks that the step ran to its end (the top line printed at time 1)
   const CcxResult run = run_ccx(work_dir, kJob, deck_for(mesh), mesh.corner_line);
-  if (!run.error.empty()) throw std::runtime_error("indentation, mesh level " + std::to_string(mesh_level) + ": " + run.error);
+  if (!run.error.empty())
+    throw std::runtime_error("indentation, mesh level " + std::to_string(mesh_level) + ": " + run.error);
   const std::string dat = (std::filesystem::absolute(work_dir) / (std::string(kJob) + ".dat")).string();
   const std::map<double, Printed> printed = read_dat(dat, mesh.corner_line);
   const double deepest = kIndentationDepths.back();
@@ -398,7 +399,8 @@ std::vector<IndentationRow> solve_indentation_with_calculix(int mesh_level, cons
       throw std::runtime_error("indentation: " + dat + " has nothing at depth " + format_double(depth) + " m");
     }
     const Printed& p = found->second;
-    if (!std::isfinite(p.sphere[2]) || !std::isfinite(p.base[2]) || static_cast<int>(p.line.size()) != mesh.corner_line) {
+    if (!std::isfinite(p.sphere[2]) || !std::isfinite(p.base[2]) ||
+        static_cast<int>(p.line.size()) != mesh.corner_line) {
       throw std::runtime_error("indentation: " + dat + " lacks a total force or the top line at depth " +
                                format_double(depth) + " m");
     }
@@ -417,7 +419,8 @@ std::vector<IndentationRow> solve_indentation_with_calculix(int mesh_level, cons
       if (!std::isfinite(u[0]) || !std::isfinite(u[2])) {
         throw std::runtime_error("indentation: " + dat + " lacks node " + std::to_string(n + 1));
       }
-      const double overlap = kIndentationRadius - std::hypot(mesh.line_x[n] + u[0], kIndentationThickness + u[2] - centre);
+      const double overlap =
+          kIndentationRadius - std::hypot(mesh.line_x[n] + u[0], kIndentationThickness + u[2] - centre);
       row.penetration = std::max(row.penetration, overlap);
       if (overlap > -kTouching) row.contact_radius = mesh.line_x[n];
     }

@@ -16,10 +16,10 @@
 
 namespace cubespring::validation {
 
-inline constexpr double kIndentationRadius = 0.010;     // the sphere's [m]
-inline constexpr double kIndentationSide = 0.10;        // the block's, along x and y [m]
-inline constexpr double kIndentationThickness = 0.05;   // the block's, along z [m]
-inline constexpr double kIndentationYoung = 5e3;        // [Pa]
+inline constexpr double kIndentationRadius = 0.010;    // the sphere's [m]
+inline constexpr double kIndentationSide = 0.10;       // the block's, along x and y [m]
+inline constexpr double kIndentationThickness = 0.05;  // the block's, along z [m]
+inline constexpr double kIndentationYoung = 5e3;       // [Pa]
 inline constexpr double kIndentationPoisson = 0.45;
 /// From the first touch at the undeformed top face [m].
 inline constexpr std::array<double, 3> kIndentationDepths{0.002, 0.005, 0.010};

@@ -21,10 +21,10 @@ struct BeamReference;
 /// convergence shows what that costs.
 double fe_volume_change(const BeamReference& reference);
 
-inline constexpr double kCubeSide = 0.12;      // [m]
+inline constexpr double kCubeSide = 0.12;  // [m]
 inline constexpr double kCubePoisson = 0.45;
-inline constexpr double kCubeDensity = 1060;   // [kg/m^3]
-inline constexpr double kCubeGravity = 9.81;   // [m/s^2]
+inline constexpr double kCubeDensity = 1060;  // [kg/m^3]
+inline constexpr double kCubeGravity = 9.81;  // [m/s^2]
 
 /// One FE solution: the top face's centre displacement along z and the volume change.
 struct SelfWeightRow {

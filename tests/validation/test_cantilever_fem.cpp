@@ -29,8 +29,8 @@ constexpr double kWidth = 0.04;
 
 struct Comparison {
   double lattice_tip = 0, reference_tip = 0;
-  double tip_error = 0;    // relative
-  double mean_error = 0;   // nodal |u - u_ref| / |reference tip|
+  double tip_error = 0;   // relative
+  double mean_error = 0;  // nodal |u - u_ref| / |reference tip|
   double max_error = 0;
 };
 
@@ -98,7 +98,7 @@ BeamReferenceSpec beam(double nu, const Eigen::Vector3i& elements) {
   return spec;
 }
 
-#define REQUIRE_CALCULIX()                                                              \
+#define REQUIRE_CALCULIX() \
   if (!validation::calculix_available()) GTEST_SKIP() << "ccx (calculix-ccx) is not installed"
 
 class LinearCantilever : public ::testing::TestWithParam<std::pair<double, double>> {};
@@ -144,7 +144,8 @@ TEST(LinearCantileverRefinement, ReferenceConvergesAndLatticeImproves) {
   EXPECT_NEAR(coarse_ref->tip_deflection() / fine_ref->tip_deflection(), 1.0, 0.01);
   const Comparison coarse = compare(lattice(beam(0.3, {64, 16, 16}), {16, 4, 4}, true), *fine_ref);
   const Comparison fine = compare(lattice(beam(0.3, {64, 16, 16}), {32, 8, 8}, true), *fine_ref);
-  const Comparison exact_fine = compare(lattice(beam(0.3, {64, 16, 16}), {32, 8, 8}, true, CellModel::kExactBending), *fine_ref);
+  const Comparison exact_fine =
+      compare(lattice(beam(0.3, {64, 16, 16}), {32, 8, 8}, true, CellModel::kExactBending), *fine_ref);
   print_row("baudet2007 16x4x4 vs h/4, nu = 0.3", coarse);
   print_row("baudet2007 32x8x8 vs h/2, nu = 0.3", fine);
   print_row("exact-bending 32x8x8 vs h/2, nu = 0.3", exact_fine);
@@ -221,7 +222,8 @@ TEST_P(LargeDeflection, AgainstNonlinearFiniteElements) {
     spec.neo_hookean = false;
     const auto saint_venant = reference(spec, "svk_" + std::to_string(young));
     ASSERT_TRUE(saint_venant);
-    print_row("baudet2007 E = " + std::to_string(young) + " vs St Venant-Kirchhoff", compare(lattice_result, *saint_venant));
+    print_row("baudet2007 E = " + std::to_string(young) + " vs St Venant-Kirchhoff",
+              compare(lattice_result, *saint_venant));
   }
   EXPECT_LT(std::abs(nh.tip_error), 0.12);
   // the deflection is large: a third of the length or more, well past linear theory's reach

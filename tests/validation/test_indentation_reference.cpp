@@ -34,10 +34,11 @@ TEST(IndentationReference, CalculixRemakesTheCommittedRows) {
   for (const int level : kMeshLevels) {
     const std::string work_dir = ::testing::TempDir() + "cubespring_ccx_indentation_" + std::to_string(level);
     for (const IndentationRow& row : solve_indentation_with_calculix(level, work_dir)) {
-      std::printf("depth %.0f mm, mesh level %d (%d elements): force %.6g N (base %.6g N), contact radius %.1f mm, "
-                  "penetration %.2f um\n",
-                  1e3 * row.depth, row.mesh_level, row.elements, row.force, row.base_force, 1e3 * row.contact_radius,
-                  1e6 * row.penetration);
+      std::printf(
+          "depth %.0f mm, mesh level %d (%d elements): force %.6g N (base %.6g N), contact radius %.1f mm, "
+          "penetration %.2f um\n",
+          1e3 * row.depth, row.mesh_level, row.elements, row.force, row.base_force, 1e3 * row.contact_radius,
+          1e6 * row.penetration);
       solved.push_back(row);
     }
     std::fflush(stdout);

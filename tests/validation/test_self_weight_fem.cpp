@@ -82,11 +82,12 @@ TEST(SelfWeightFem, TheLatticeSagsAndKeepsItsVolumeAsCalculixNeoHookean) {
       const ExperimentResult& r = result.value();
       const double sag_error = *r.top_centre_uz / reference.top_centre_uz - 1.0;
       const double volume_error = *r.volume_change - reference.volume_change;
-      std::printf("%s, %s, %d^3 cells: top centre uz %.3f mm (FE %.3f mm, %+.2f%%), volume change "
-                  "%+.3f%% (FE %+.3f%%, difference %+.3f%% of the rest volume), least cell %.3f\n",
-                  name(key).c_str(), cell_model_name(c.model), c.cells, 1e3 * *r.top_centre_uz,
-                  1e3 * reference.top_centre_uz, 100 * sag_error, 100 * *r.volume_change,
-                  100 * reference.volume_change, 100 * volume_error, *r.least_cell_volume_ratio);
+      std::printf(
+          "%s, %s, %d^3 cells: top centre uz %.3f mm (FE %.3f mm, %+.2f%%), volume change "
+          "%+.3f%% (FE %+.3f%%, difference %+.3f%% of the rest volume), least cell %.3f\n",
+          name(key).c_str(), cell_model_name(c.model), c.cells, 1e3 * *r.top_centre_uz, 1e3 * reference.top_centre_uz,
+          100 * sag_error, 100 * *r.volume_change, 100 * reference.volume_change, 100 * volume_error,
+          *r.least_cell_volume_ratio);
       EXPECT_LT(std::abs(sag_error), 0.05) << name(key) << ", " << cell_model_name(c.model);
       EXPECT_LT(std::abs(volume_error), 0.01) << name(key) << ", " << cell_model_name(c.model);
       EXPECT_GT(*r.least_cell_volume_ratio, 0.5);

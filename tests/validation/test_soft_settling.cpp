@@ -19,10 +19,10 @@ namespace {
 
 struct Settled {
   bool stable = false;
-  double top_sag = 0;          // [m], of the top face's centre node
-  double volume_ratio = 0;     // deformed / rest, of the whole lattice
-  double smallest_cell = 0;    // the least J of a cell
-  double rms_speed = 0;        // mass-weighted [m/s]
+  double top_sag = 0;        // [m], of the top face's centre node
+  double volume_ratio = 0;   // deformed / rest, of the whole lattice
+  double smallest_cell = 0;  // the least J of a cell
+  double rms_speed = 0;      // mass-weighted [m/s]
 };
 
 Settled settle_cube(double young_modulus, CellLaw law, double seconds) {

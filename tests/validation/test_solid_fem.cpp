@@ -22,7 +22,7 @@ using validation::SolidReferenceSpec;
 constexpr double kCell = 0.01;
 constexpr double kLoadScale = 1e-3;
 
-#define REQUIRE_CALCULIX()                                   \
+#define REQUIRE_CALCULIX() \
   if (!validation::calculix_available()) GTEST_SKIP() << "ccx (calculix-ccx) is not installed"
 
 std::optional<SolidReference> reference(SolidReferenceSpec spec, const std::string& name) {

@@ -42,10 +42,10 @@ struct LoadOptions {
 ///   that a malformed one that crashes or hangs assimp's reader is an error, not the end of the
 ///   caller (docs/voxelize.md section 1).
 ///
-/// Errors name the file: it cannot be opened, its format is off the list, assimp cannot read its format or reports a parse
-/// error, it has no triangles, a coordinate is not finite, a face refers to a missing vertex,
-/// the COLLADA or glTF reader crashed, overran its time or its memory; or options.scale is not a
-/// finite number > 0, or options.reader_seconds is negative or not finite.
+/// Errors name the file: it cannot be opened, its format is off the list, assimp cannot read its format or reports a
+/// parse error, it has no triangles, a coordinate is not finite, a face refers to a missing vertex, the COLLADA or glTF
+/// reader crashed, overran its time or its memory; or options.scale is not a finite number > 0, or
+/// options.reader_seconds is negative or not finite.
 Result<TriangleMesh> load_mesh(const std::string& path, const LoadOptions& options = {});
 
 }  // namespace cubespring

@@ -16,10 +16,10 @@ namespace cubespring {
 struct Camera {
   Eigen::Vector3d position{0.0, -0.5, 0.2};  ///< eye [m]
   Eigen::Vector3d target{0.0, 0.0, 0.0};     ///< point seen at the image centre [m]
-  Eigen::Vector3d up{0.0, 0.0, 1.0};  ///< world direction shown upward [-]; not parallel to target - position
-  double vertical_fov_degrees = 40;   ///< full vertical opening angle [deg], in (0, 180)
-  double near = 0.01;                 ///< near clipping distance [m], > 0
-  double far = 100;                   ///< far clipping distance [m], > near
+  Eigen::Vector3d up{0.0, 0.0, 1.0};         ///< world direction shown upward [-]; not parallel to target - position
+  double vertical_fov_degrees = 40;          ///< full vertical opening angle [deg], in (0, 180)
+  double near = 0.01;                        ///< near clipping distance [m], > 0
+  double far = 100;                          ///< far clipping distance [m], > near
 
   /// World to eye transform (gluLookAt's matrix).
   Eigen::Matrix4d view() const;

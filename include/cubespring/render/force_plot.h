@@ -12,9 +12,9 @@
 namespace cubespring {
 
 struct ForceSeries {
-  std::string name;                ///< the tool's name, shown in the key
-  std::vector<double> time;        ///< [s]
-  std::vector<double> magnitude;   ///< |force| at each time [N]
+  std::string name;               ///< the tool's name, shown in the key
+  std::vector<double> time;       ///< [s]
+  std::vector<double> magnitude;  ///< |force| at each time [N]
 };
 
 /// Axes with numbered ticks (time in seconds across, force in newtons up), one coloured line per

@@ -13,9 +13,9 @@ namespace cubespring {
 
 /// An 8-bit sRGB picture, rows from the top.
 struct Image {
-  int width = 0;                   ///< [pixels]
-  int height = 0;                  ///< [pixels]
-  std::vector<std::uint8_t> rgb;   ///< (height x width x 3) red, green, blue of each pixel, row-major
+  int width = 0;                  ///< [pixels]
+  int height = 0;                 ///< [pixels]
+  std::vector<std::uint8_t> rgb;  ///< (height x width x 3) red, green, blue of each pixel, row-major
 
   /// The three channels of pixel (x, y), x from the left, y from the top; no bounds check.
   const std::uint8_t* pixel(int x, int y) const {

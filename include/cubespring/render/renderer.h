@@ -35,8 +35,8 @@ enum class LineVisibility {
 
 /// Everything about frames that does not change from one frame to the next.
 struct RenderSettings {
-  int width = 1280;       ///< output image width [pixels], >= 1
-  int height = 720;       ///< output image height [pixels], >= 1
+  int width = 1280;  ///< output image width [pixels], >= 1
+  int height = 720;  ///< output image height [pixels], >= 1
   /// Anti-aliasing: render at supersampling x the size and average each block down, 1 to 8.
   /// The rendered size (width x supersampling, height x supersampling) is at most 8192 a side.
   int supersampling = 2;
@@ -44,11 +44,11 @@ struct RenderSettings {
   /// Up to 8 lights (OpenGL's fixed pipeline). None means unlit: every surface shows its colour as
   /// is (flat masks for tests and overlays).
   std::vector<Light> lights = default_lights();
-  float ambient = 0.25f;  ///< fraction of a surface's colour seen without any light, in [0, 1]
-  bool floor = true;      ///< draw a checkered floor under the scene
-  double floor_height = 0.0;       ///< z of the floor plane [m]
-  double floor_half_size = 0.5;    ///< the floor spans +-this in x and y around the camera target [m], > 0
-  double floor_tile_size = 0.02;   ///< checker tile edge [m]; 0 for a plain floor
+  float ambient = 0.25f;          ///< fraction of a surface's colour seen without any light, in [0, 1]
+  bool floor = true;              ///< draw a checkered floor under the scene
+  double floor_height = 0.0;      ///< z of the floor plane [m]
+  double floor_half_size = 0.5;   ///< the floor spans +-this in x and y around the camera target [m], > 0
+  double floor_tile_size = 0.02;  ///< checker tile edge [m]; 0 for a plain floor
   Eigen::Vector3f floor_colour{0.62f, 0.62f, 0.58f};  ///< RGB in [0, 1]; every other tile is 15% darker
 };
 
@@ -83,8 +83,8 @@ class Renderer {
 
   /// A lit surface of one colour. vertices and normals (3 x n) [m] and [-] (unit length preferred;
   /// see vertex_normals()), triangles (3 x m) vertex indices, colour RGB in [0, 1].
-  Status draw_mesh(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xd& normals,
-                   const Eigen::Matrix3Xi& triangles, const Eigen::Vector3f& colour);
+  Status draw_mesh(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xd& normals, const Eigen::Matrix3Xi& triangles,
+                   const Eigen::Vector3f& colour);
   /// A lit surface coloured per vertex (3 x n) RGB in [0, 1], interpolated across triangles, e.g.
   /// ColourMap::colours() of a displacement field.
   Status draw_mesh_coloured(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xd& normals,

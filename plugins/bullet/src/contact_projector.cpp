@@ -89,7 +89,8 @@ bool any_corner(const std::vector<char>& flags, const Eigen::Matrix3Xi& triangle
 // another may take its address.
 template <class Map>
 void drop_unseen(Map& kept) {
-  for (auto entry = kept.begin(); entry != kept.end();) entry = entry->second.seen ? std::next(entry) : kept.erase(entry);
+  for (auto entry = kept.begin(); entry != kept.end();)
+    entry = entry->second.seen ? std::next(entry) : kept.erase(entry);
 }
 
 }  // namespace
@@ -309,8 +310,8 @@ void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& co
   for (int pass = 0; pass < kMaxPasses && budget > 0.0; ++pass) {
     points_.clear();
     double deepest = 0.0;
-    const double believed_depth =
-        outside ? believed_entry(clearance, moved + (surface_travel_ - travel)) : std::numeric_limits<double>::infinity();
+    const double believed_depth = outside ? believed_entry(clearance, moved + (surface_travel_ - travel))
+                                          : std::numeric_limits<double>::infinity();
     moved = 0.0;  // the tool stands still between the passes
     const std::vector<CoreContact> contacts = core_contacts(core, body_.surface_positions_, body_.surface_triangles_,
                                                             *body_.surface_topology_, near, reach, believed_depth);
@@ -346,10 +347,9 @@ double ContactProjector::penetration(const RigidTrack& track) const {
     const std::vector<int> near = outer_triangles_near(*core, body.surface_positions_, body.surface_triangles_,
                                                        *body.surface_topology_, core->radius + cell);
     const auto last = last_cores_.find(track.object);
-    const double believed_depth =
-        last != last_cores_.end() && last->second.outside
-            ? believed_entry(last->second.clearance, surface_travel_ - last->second.travel)
-            : std::numeric_limits<double>::infinity();
+    const double believed_depth = last != last_cores_.end() && last->second.outside
+                                      ? believed_entry(last->second.clearance, surface_travel_ - last->second.travel)
+                                      : std::numeric_limits<double>::infinity();
     double deepest = 0.0;
     for (const CoreContact& contact : core_contacts(*core, body.surface_positions_, body.surface_triangles_,
                                                     *body.surface_topology_, near, core->radius, believed_depth)) {
@@ -403,7 +403,8 @@ void ContactProjector::add_vertex_point(int vertex, const Eigen::Vector3d& push)
 
 void ContactProjector::add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push) {
   ContactPoint& point = new_point(push);
-  for (int corner = 0; corner < 3; ++corner) add_vertex(point, body_.surface_triangles_(corner, triangle), barycentric[corner]);
+  for (int corner = 0; corner < 3; ++corner)
+    add_vertex(point, body_.surface_triangles_(corner, triangle), barycentric[corner]);
 }
 
 ContactProjector::ContactPoint& ContactProjector::new_point(const Eigen::Vector3d& push) {
@@ -468,7 +469,8 @@ Eigen::Vector3d ContactProjector::at_point(const ContactPoint& point, const Eige
   return sum;
 }
 
-void ContactProjector::move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change) const {
+void ContactProjector::move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field,
+                                  const Eigen::Vector3d& change) const {
   for (int e = point.first_node; e < point.end_node; ++e) {
     const PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
     if (entry.share_per_mass != 0.0) field.col(entry.node) += entry.share_per_mass * change;

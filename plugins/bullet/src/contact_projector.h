@@ -42,17 +42,17 @@ class ContactProjector {
  private:
   // A contact point as a weighted sum of nodes (point_nodes_[first_node .. end_node)).
   struct ContactPoint {
-    Eigen::Vector3d push{0, 0, 0};      // the move that takes it out of the rigid body [m]
-    Eigen::Vector3d contact{0, 0, 0};   // where it touches [m]
-    Eigen::Vector3d normal{0, 0, 0};    // of the push
-    double lift = 0.0;                  // the projection's multiplier so far [kg m]
-    Eigen::Vector3d impulse{0, 0, 0};   // the tissue's impulse at it so far [N s]
-    double inverse_mass = 0.0;          // [1/kg]
-    int key = -1;                       // where its impulse is kept for the next sub-step: the
-                                        // surface vertex of a vertex point, the triangle of a box
-                                        // edge's; -1: not kept
-    double share = 0.0;                 // the weights on the nodes it moves, summed: an impulse J
-                                        // there gives them the momentum share J
+    Eigen::Vector3d push{0, 0, 0};     // the move that takes it out of the rigid body [m]
+    Eigen::Vector3d contact{0, 0, 0};  // where it touches [m]
+    Eigen::Vector3d normal{0, 0, 0};   // of the push
+    double lift = 0.0;                 // the projection's multiplier so far [kg m]
+    Eigen::Vector3d impulse{0, 0, 0};  // the tissue's impulse at it so far [N s]
+    double inverse_mass = 0.0;         // [1/kg]
+    int key = -1;                      // where its impulse is kept for the next sub-step: the
+                                       // surface vertex of a vertex point, the triangle of a box
+                                       // edge's; -1: not kept
+    double share = 0.0;                // the weights on the nodes it moves, summed: an impulse J
+                                       // there gives them the momentum share J
     int first_node = 0, end_node = 0;
   };
 
@@ -119,7 +119,7 @@ class ContactProjector {
   // The surface's odometer: the farthest any window vertex moved, summed over every refresh [m].
   // No vertex near a tool has moved farther than the difference of two readings.
   double surface_travel_ = 0.0;
-  std::vector<ContactPoint> points_;               // this pass's contacts
+  std::vector<ContactPoint> points_;  // this pass's contacts
   // A node of a contact point, its weight there, and what a change at the point gives it per unit
   // (weight / mass for a movable node, else 0), set by prepare_points().
   struct PointNode {

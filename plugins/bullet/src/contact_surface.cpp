@@ -21,7 +21,8 @@ ContactSurface embedded_surface(const Model& model, const Embedding& embedding) 
   ContactSurface surface;
   surface.offset.push_back(0);
   for (int v = 0; v < embedding.num_vertices(); ++v) {
-    const auto& corners = model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
+    const auto& corners =
+        model.cell_nodes[static_cast<std::size_t>(embedding.vertex_cell[static_cast<std::size_t>(v)])];
     const Eigen::Vector3d u = embedding.vertex_local.col(v);
     for (int corner = 0; corner < kCornersPerCell; ++corner) {
       double weight = 1.0;

@@ -3,9 +3,9 @@
 // Between Eigen's doubles and Bullet's btScalar (float or double, as Bullet was built).
 #pragma once
 
+#include <LinearMath/btVector3.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <LinearMath/btVector3.h>
 
 namespace cubespring::bullet {
 

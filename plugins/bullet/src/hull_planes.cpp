@@ -43,8 +43,8 @@ std::vector<btVector3> support_points(const btConvexShape& shape) {
     const double z = 1.0 - (2.0 * k + 1.0) / kSupportDirections;
     const double ring = std::sqrt(1.0 - z * z);
     const double angle = kGoldenAngle * k;
-    const btVector3 direction(static_cast<btScalar>(ring * std::cos(angle)), static_cast<btScalar>(ring * std::sin(angle)),
-                              static_cast<btScalar>(z));
+    const btVector3 direction(static_cast<btScalar>(ring * std::cos(angle)),
+                              static_cast<btScalar>(ring * std::sin(angle)), static_cast<btScalar>(z));
     points.push_back(shape.localGetSupportingVertex(direction));
   }
   return points;

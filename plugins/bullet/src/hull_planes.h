@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include <Eigen/Core>
 #include <btBulletCollisionCommon.h>
+#include <Eigen/Core>
 
 namespace cubespring::bullet {
 

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 #include <BulletCollision/CollisionShapes/btPolyhedralConvexShape.h>
+#include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 
 #include "conversions.h"
 #include "hull_planes.h"
@@ -79,7 +79,8 @@ std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen
   for (int axis = 0; axis < 3; ++axis) {
     for (int side = 0; side < 2; ++side) {
       const double sign = side == 0 ? -1.0 : 1.0;
-      exits[static_cast<std::size_t>(2 * axis + side)] = {half[axis] - sign * p[axis], sign * Eigen::Vector3d::Unit(axis)};
+      exits[static_cast<std::size_t>(2 * axis + side)] = {half[axis] - sign * p[axis],
+                                                          sign * Eigen::Vector3d::Unit(axis)};
     }
   }
   return push_through(exits.data(), exits.data() + exits.size(), surface_normal, max_detour);
@@ -136,7 +137,8 @@ std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen
     if (shape.isPolyhedral()) {
       const auto& polyhedron = static_cast<const btPolyhedralConvexShape&>(shape);
       points.resize(static_cast<std::size_t>(polyhedron.getNumVertices()));
-      for (int i = 0; i < polyhedron.getNumVertices(); ++i) polyhedron.getVertex(i, points[static_cast<std::size_t>(i)]);
+      for (int i = 0; i < polyhedron.getNumVertices(); ++i)
+        polyhedron.getVertex(i, points[static_cast<std::size_t>(i)]);
     } else {
       points = support_points(shape);
     }
@@ -164,16 +166,17 @@ std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const bt
   std::optional<Eigen::Vector3d> push;
   switch (convex.getShapeType()) {
     case SPHERE_SHAPE_PROXYTYPE:
-      push = capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()) + offset, 0.0, 2, p);
+      push =
+          capsule_push(static_cast<double>(static_cast<const btSphereShape&>(convex).getRadius()) + offset, 0.0, 2, p);
       break;
     case BOX_SHAPE_PROXYTYPE:
-      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()).array() + offset, p, n,
-                      reach.detour);
+      push = box_push(to_eigen(static_cast<const btBoxShape&>(convex).getHalfExtentsWithMargin()).array() + offset, p,
+                      n, reach.detour);
       break;
     case CAPSULE_SHAPE_PROXYTYPE: {
       const auto& capsule = static_cast<const btCapsuleShape&>(convex);
-      push = capsule_push(static_cast<double>(capsule.getRadius()) + offset, static_cast<double>(capsule.getHalfHeight()),
-                          capsule.getUpAxis(), p);
+      push = capsule_push(static_cast<double>(capsule.getRadius()) + offset,
+                          static_cast<double>(capsule.getHalfHeight()), capsule.getUpAxis(), p);
       break;
     }
     case CYLINDER_SHAPE_PROXYTYPE: {
@@ -314,9 +317,8 @@ std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, c
     const auto& compound = static_cast<const btCompoundShape&>(shape);
     std::optional<Eigen::Vector3d> deepest;
     for (int child = 0; child < compound.getNumChildShapes(); ++child) {
-      const std::optional<Eigen::Vector3d> push =
-          penetration_push(*compound.getChildShape(child), transform * compound.getChildTransform(child), point,
-                           surface_normal, reach);
+      const std::optional<Eigen::Vector3d> push = penetration_push(
+          *compound.getChildShape(child), transform * compound.getChildTransform(child), point, surface_normal, reach);
       if (push && (!deepest || push->squaredNorm() > deepest->squaredNorm())) deepest = push;
     }
     return deepest;
@@ -360,7 +362,6 @@ std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, c
   return FacePenetration{barycentric, depth};
 }
 
-
 std::vector<RigidEdge> box_edges(const btCollisionShape& shape, const btTransform& transform, double offset) {
   std::vector<RigidEdge> edges;
   if (shape.isCompound()) {
@@ -373,7 +374,8 @@ std::vector<RigidEdge> box_edges(const btCollisionShape& shape, const btTransfor
     return edges;
   }
   if (shape.getShapeType() != BOX_SHAPE_PROXYTYPE) return edges;
-  const Eigen::Vector3d half = to_eigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin()).array() + offset;
+  const Eigen::Vector3d half =
+      to_eigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin()).array() + offset;
   for (int axis = 0; axis < 3; ++axis) {
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     for (int side = 0; side < 4; ++side) {  // the four edges along the axis

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include <Eigen/Core>
 #include <btBulletCollisionCommon.h>
+#include <Eigen/Core>
 
 namespace cubespring::bullet {
 

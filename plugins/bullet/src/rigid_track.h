@@ -6,8 +6,8 @@
 // handed to Bullet at the end of the step.
 #pragma once
 
-#include <Eigen/Core>
 #include <btBulletDynamicsCommon.h>
+#include <Eigen/Core>
 
 namespace cubespring::bullet {
 
@@ -19,7 +19,7 @@ struct RigidTrack {
   /// step is made to end where they did. A constrained body is moved at its step-start velocity
   /// (its constraints are Bullet's to solve) and only receives the impulses.
   bool free_flight = false;
-  btTransform transform;        ///< at the end of the current sub-step
+  btTransform transform;                      ///< at the end of the current sub-step
   Eigen::Vector3d linear_velocity{0, 0, 0};   ///< [m/s]
   Eigen::Vector3d angular_velocity{0, 0, 0};  ///< [rad/s]
   Eigen::Vector3d gravity{0, 0, 0};           ///< [m/s^2], dynamic bodies

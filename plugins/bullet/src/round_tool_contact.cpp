@@ -40,7 +40,6 @@ CoreContact signed_contact(const Eigen::Vector3d& x, const SurfacePoint& at, con
   return contact;
 }
 
-
 // A core that crosses the surface: its deepest point inside, among its ends and points between
 // (a tool's tip is an end).
 CoreContact deepest_inside(const RoundCore& core, const std::vector<int>& candidates, const Eigen::Matrix3Xd& positions,
@@ -108,8 +107,8 @@ std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix
 }
 
 std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matrix3Xd& positions,
-                                      const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                                      const std::vector<int>& candidates, double reach, double believed_depth) {
+                                       const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
+                                       const std::vector<int>& candidates, double reach, double believed_depth) {
   if (candidates.empty()) return {};
 
   // each candidate's nearest points to the core; the nearest of all tells whether the core is

@@ -9,8 +9,8 @@
 #include <optional>
 #include <vector>
 
-#include <Eigen/Core>
 #include <btBulletCollisionCommon.h>
+#include <Eigen/Core>
 
 #include "surface_distance.h"
 #include "surface_topology.h"
@@ -31,18 +31,18 @@ std::optional<RoundCore> round_core(const btCollisionShape& shape, const btTrans
 /// Where a core is nearest the tissue's outer surface (the triangles whose `topology.outer` is
 /// set), or deepest inside the tissue when it crosses the surface.
 struct CoreContact {
-  SurfacePoint surface;                    ///< the surface's point nearest `core_point`
-  Eigen::Vector3d core_point{0, 0, 0};     ///< on the core's segment
-  double signed_distance = 0.0;            ///< from the surface to core_point, < 0 inside the tissue
-  Eigen::Vector3d normal{0, 0, 0};         ///< the tissue's outward unit normal there, toward the core
+  SurfacePoint surface;                 ///< the surface's point nearest `core_point`
+  Eigen::Vector3d core_point{0, 0, 0};  ///< on the core's segment
+  double signed_distance = 0.0;         ///< from the surface to core_point, < 0 inside the tissue
+  Eigen::Vector3d normal{0, 0, 0};      ///< the tissue's outward unit normal there, toward the core
 };
 
 /// The outer triangles (those whose `topology.outer` is set) whose bounding boxes come within
 /// `reach` of the core's, in ascending order; looked for among `among` (ascending) when given,
 /// else among all (only their positions are read).
 std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix3Xd& positions,
-                                      const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                                      double reach, const std::vector<int>* among = nullptr);
+                                      const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology, double reach,
+                                      const std::vector<int>* among = nullptr);
 
 /// The places where a core meets the surface, among the triangles `candidates`: when the core is
 /// outside the tissue, the nearest point of every feature (a triangle's inside, an edge, a
@@ -55,8 +55,8 @@ std::vector<int> outer_triangles_near(const RoundCore& core, const Eigen::Matrix
 /// the pseudonormal of the nearest point can point the wrong way; a core that was outside a moment
 /// ago cannot be a radius deep now (the caller knows how far it moved). Infinity believes all.
 std::vector<CoreContact> core_contacts(const RoundCore& core, const Eigen::Matrix3Xd& positions,
-                                      const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                                      const std::vector<int>& candidates, double reach,
-                                      double believed_depth = std::numeric_limits<double>::infinity());
+                                       const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
+                                       const std::vector<int>& candidates, double reach,
+                                       double believed_depth = std::numeric_limits<double>::infinity());
 
 }  // namespace cubespring::bullet

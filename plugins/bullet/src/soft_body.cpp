@@ -32,10 +32,12 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
     return Status::error("contact friction " + std::to_string(settings.contact.friction) + " must be >= 0");
   }
   if (!(settings.contact.offset >= 0.0 && std::isfinite(settings.contact.offset))) {
-    return Status::error("contact offset " + std::to_string(settings.contact.offset) + " m must be a finite length >= 0");
+    return Status::error("contact offset " + std::to_string(settings.contact.offset) +
+                         " m must be a finite length >= 0");
   }
   if (!(settings.contact.max_depth >= 0.0 && std::isfinite(settings.contact.max_depth))) {
-    return Status::error("contact max_depth " + std::to_string(settings.contact.max_depth) + " m must be a finite length >= 0 (0: two cells)");
+    return Status::error("contact max_depth " + std::to_string(settings.contact.max_depth) +
+                         " m must be a finite length >= 0 (0: two cells)");
   }
   if (!(settings.time_step_safety > 0.0 && settings.time_step_safety <= 1.0)) {
     return Status::error("time step safety " + std::to_string(settings.time_step_safety) + " must be in (0, 1]");
@@ -109,8 +111,8 @@ void SoftBody::index_vertices_by_node() {
   std::vector<int> fill(node_vertex_offset_.begin(), node_vertex_offset_.end() - 1);
   for (std::size_t v = 0; v + 1 < surface_offset_.size(); ++v) {
     for (int e = surface_offset_[v]; e < surface_offset_[v + 1]; ++e) {
-      node_vertex_[static_cast<std::size_t>(fill[static_cast<std::size_t>(surface_node_[static_cast<std::size_t>(e)])]++)] =
-          static_cast<int>(v);
+      node_vertex_[static_cast<std::size_t>(
+          fill[static_cast<std::size_t>(surface_node_[static_cast<std::size_t>(e)])]++)] = static_cast<int>(v);
     }
   }
   node_moved_.assign(num_nodes, 0);
@@ -121,8 +123,10 @@ double SoftBody::refresh_vertex(int v) {
   // summed in a local (the compiler cannot keep a column of one matrix in registers while it reads
   // another); the same sums in the same order
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1]; ++e) {
-    sum += surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
+  for (int e = surface_offset_[static_cast<std::size_t>(v)]; e < surface_offset_[static_cast<std::size_t>(v) + 1];
+       ++e) {
+    sum +=
+        surface_weight_[static_cast<std::size_t>(e)] * state_.positions.col(surface_node_[static_cast<std::size_t>(e)]);
   }
   const double moved = (sum - surface_positions_.col(v)).squaredNorm();
   surface_positions_.col(v) = sum;
@@ -147,7 +151,8 @@ double SoftBody::update_moved_surface() {
   // each stale vertex once (it may hang from several moved nodes)
   stale_vertices_.clear();
   for (const int node : moved_nodes_) {
-    for (int k = node_vertex_offset_[static_cast<std::size_t>(node)]; k < node_vertex_offset_[static_cast<std::size_t>(node) + 1]; ++k) {
+    for (int k = node_vertex_offset_[static_cast<std::size_t>(node)];
+         k < node_vertex_offset_[static_cast<std::size_t>(node) + 1]; ++k) {
       const int v = node_vertex_[static_cast<std::size_t>(k)];
       if (vertex_stale_[static_cast<std::size_t>(v)]) continue;
       vertex_stale_[static_cast<std::size_t>(v)] = 1;
@@ -167,8 +172,8 @@ double SoftBody::update_moved_surface() {
 Status SoftBody::reset(const State& state) {
   const auto nodes = static_cast<Eigen::Index>(model_.num_nodes());
   if (state.positions.cols() != nodes || state.velocities.cols() != nodes) {
-    return Status::error("SoftBody::reset: the state has " + std::to_string(state.positions.cols()) + " positions and " +
-                         std::to_string(state.velocities.cols()) + " velocities; the body has " +
+    return Status::error("SoftBody::reset: the state has " + std::to_string(state.positions.cols()) +
+                         " positions and " + std::to_string(state.velocities.cols()) + " velocities; the body has " +
                          std::to_string(nodes) + " nodes");
   }
   if (!state.positions.allFinite() || !state.velocities.allFinite() || !std::isfinite(state.time)) {
@@ -192,7 +197,8 @@ Result<int> SoftBody::anchor(btRigidBody* body, const std::vector<int>& nodes) {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const int node = nodes[i];
     if (node < 0 || node >= model_.num_nodes()) {
-      return Status::error("anchor: node " + std::to_string(node) + " is not in 0.." + std::to_string(model_.num_nodes() - 1));
+      return Status::error("anchor: node " + std::to_string(node) + " is not in 0.." +
+                           std::to_string(model_.num_nodes() - 1));
     }
     anchor.local.col(static_cast<Eigen::Index>(i)) = to_eigen(inverse * to_bt(state_.positions.col(node)));
   }
@@ -211,7 +217,8 @@ Result<int> SoftBody::anchor_box(btRigidBody* body, const Eigen::Vector3d& lower
 }
 
 Status SoftBody::detach(int anchor_id) {
-  if (anchor_id < 0 || anchor_id >= static_cast<int>(anchors_.size()) || !anchors_[static_cast<std::size_t>(anchor_id)]) {
+  if (anchor_id < 0 || anchor_id >= static_cast<int>(anchors_.size()) ||
+      !anchors_[static_cast<std::size_t>(anchor_id)]) {
     return Status::error("detach: no anchor " + std::to_string(anchor_id));
   }
   // static and kinematic bodies drove their nodes through the constraints; dynamic ones pulled
@@ -254,7 +261,8 @@ std::optional<SoftBody::RayHit> SoftBody::ray_test(const Eigen::Vector3d& from, 
     }
     const int vertex = surface_triangles_(corner, t);
     double heaviest = -std::numeric_limits<double>::infinity();
-    for (int e = surface_offset_[static_cast<std::size_t>(vertex)]; e < surface_offset_[static_cast<std::size_t>(vertex) + 1]; ++e) {
+    for (int e = surface_offset_[static_cast<std::size_t>(vertex)];
+         e < surface_offset_[static_cast<std::size_t>(vertex) + 1]; ++e) {
       if (surface_weight_[static_cast<std::size_t>(e)] > heaviest) {
         heaviest = surface_weight_[static_cast<std::size_t>(e)];
         hit.nearest_node = surface_node_[static_cast<std::size_t>(e)];

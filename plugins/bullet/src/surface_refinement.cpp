@@ -59,9 +59,7 @@ TriangleMesh split_long_edges(const TriangleMesh& mesh, double max_edge) {
       const int bc = middle[static_cast<std::size_t>((first + 1) % 3)];
       const int ca = middle[static_cast<std::size_t>((first + 2) % 3)];
       switch (splits) {
-        case 0:
-          next.push_back({a, b, c});
-          break;
+        case 0: next.push_back({a, b, c}); break;
         case 1:
           next.push_back({a, ab, c});
           next.push_back({ab, b, c});

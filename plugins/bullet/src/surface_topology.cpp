@@ -107,7 +107,8 @@ SurfaceTopology surface_topology(const Eigen::Matrix3Xd& rest_positions, const E
   for (const int p : parts) {
     const auto first = static_cast<Eigen::Index>(std::find(part.begin(), part.end(), p) - part.begin());
     const Eigen::Vector3d origin = (rest_positions.col(triangles(0, first)) + rest_positions.col(triangles(1, first)) +
-                                    rest_positions.col(triangles(2, first))) / 3.0;
+                                    rest_positions.col(triangles(2, first))) /
+                                   3.0;
     int crossings = 0;
     for (Eigen::Index t = 0; t < num_triangles; ++t) {
       if (part[static_cast<std::size_t>(t)] == p) continue;
@@ -126,7 +127,8 @@ Eigen::Vector3d vertex_normal(const SurfaceTopology& topology, const Eigen::Matr
                               const Eigen::Matrix3Xi& triangles, int v) {
   // the triangles in ascending order, as vertex_normals() visits them
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (int k = topology.vertex_offset[static_cast<std::size_t>(v)]; k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+  for (int k = topology.vertex_offset[static_cast<std::size_t>(v)];
+       k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
     const int t = topology.vertex_triangle[static_cast<std::size_t>(k)];
     const Eigen::Vector3d a = positions.col(triangles(0, t));
     sum += (positions.col(triangles(1, t)) - a).cross(positions.col(triangles(2, t)) - a);

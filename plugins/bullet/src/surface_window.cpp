@@ -22,7 +22,8 @@ void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd
   std::vector<char> vertex_in(static_cast<std::size_t>(vertices.cols()), 0);
   std::vector<char> triangle_in(static_cast<std::size_t>(triangles.cols()), 0);
   const auto take_triangles_around = [&](int v) {
-    for (int k = topology.vertex_offset[static_cast<std::size_t>(v)]; k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+    for (int k = topology.vertex_offset[static_cast<std::size_t>(v)];
+         k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
       triangle_in[static_cast<std::size_t>(topology.vertex_triangle[static_cast<std::size_t>(k)])] = 1;
     }
   };

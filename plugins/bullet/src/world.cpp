@@ -13,8 +13,8 @@
 
 #include "contact_projector.h"
 #include "conversions.h"
-#include "instability_causes.h"
 #include "cubespring/stable_time_step.h"
+#include "instability_causes.h"
 #include "rigid_track.h"
 
 namespace cubespring::bullet {
@@ -23,9 +23,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // Collision objects whose broadphase bounds overlap a box.
 class OverlapCollector : public btBroadphaseAabbCallback {
@@ -283,8 +281,8 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     drive_anchors(body, tracks, anchor_track, dt);
     if (held_anchors) velocities_before = body.state_.velocities;
     Clock::time_point part = Clock::now();
-    const StepReport report = body.stepper_->step(body.model_, body.constraints_, body.loads_, body.step_settings_,
-                                                  body.state_);
+    const StepReport report =
+        body.stepper_->step(body.model_, body.constraints_, body.loads_, body.step_settings_, body.state_);
     body.times_.elastic += seconds_since(part);
     body.last_report_ = report;
     if (!report.ok()) {

@@ -98,8 +98,9 @@ CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int s
     const double cells = (occupied[g] + occupied_b[g]) + (occupied_c[g] + occupied_bc[g]);
     double own = (kUniform ? cells * cell_stiffness : stiffness[g]) * (length - rest);
     if constexpr (kWithRate) {
-      const double rate = ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey +
-                           (vz[g + to] - vz[g + from]) * ez) * inverse;
+      const double rate =
+          ((vx[g + to] - vx[g + from]) * ex + (vy[g + to] - vy[g + from]) * ey + (vz[g + to] - vz[g + from]) * ez) *
+          inverse;
       own += (kUniform ? cells * cell_damping : damping[g]) * rate;
       rate_out[g] = rate;
     }
@@ -346,7 +347,6 @@ template <class Constants>
   }
 }
 
-
 // Pass 1b, neo-Hookean bodies only, on one z-layer of cells: the law's term of each cell
 // (neo_hookean_term, which the spring lists call too) from its 8 corners' mean edge vectors m_p;
 // a quarter of dC/dm_p is what each of its 4 edges along p puts on its first end (corner_forces:
@@ -483,7 +483,7 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
     const double* __restrict m1_2e = m1_x[3] + component;  // at g - s2 + e
     const double* __restrict m2_0 = m2_x[0] + component;
     const double* __restrict m2_e = m2_x[1] + component;
-    const double* __restrict m2_1 = m2_x[2] + component;   // at g - s1
+    const double* __restrict m2_1 = m2_x[2] + component;  // at g - s1
     const double* __restrict m2_1e = m2_x[3] + component;
     double* __restrict out = force_x + component;
 #pragma omp simd
@@ -543,7 +543,7 @@ struct LayerPasses {
       }
     }
     if (families <= kEdgeFamilies || slab >= grid.cell_slabs) return 0;  // the top layer: no diagonals
-    bool uniform = !grid.has_twist || grid.uniform_cells;  // the twist's constants, and the diagonals'
+    bool uniform = !grid.has_twist || grid.uniform_cells;                // the twist's constants, and the diagonals'
     for (int f = kEdgeFamilies; f < kSpringFamilies; ++f) uniform = uniform && grid.families[f].uniform;
     const int crushed = with_rate ? diagonals_of_kind<true>(slab, uniform) : diagonals_of_kind<false>(slab, uniform);
     if (!grid.neo_hookean) return crushed;
@@ -799,8 +799,7 @@ void run_chunk(const GridLayout& grid, const State& state, bool with_rate, const
   waits.mark_done(chunk);
   const LayerPasses passes{grid, a, with_rate};
   int crushed = 0;
-  const Range gathered =
-      plan.down ? sweep_down(passes, plan, waits, crushed) : sweep_up(passes, plan, waits, crushed);
+  const Range gathered = plan.down ? sweep_down(passes, plan, waits, crushed) : sweep_up(passes, plan, waits, crushed);
   results.crushed[chunk] = crushed;
   results.gathered[chunk] = gathered;
   const Range nodes = nodes_in_layers(grid, gathered);
@@ -944,8 +943,7 @@ GridForces grid_spring_forces(const GridLayout& grid, const State& state, bool w
     } else {
       plan.unclaimed = &unclaimed[region];
     }
-    run_chunk(grid, state, with_rate, kick, arrays, plan, chunk, chunks, chunks > 1, copy_done.data(), results,
-              forces);
+    run_chunk(grid, state, with_rate, kick, arrays, plan, chunk, chunks, chunks > 1, copy_done.data(), results, forces);
   });
   if (team > 1 && as_planned && !split.fixed) balance_split(results, team, split);
   GridForces out;

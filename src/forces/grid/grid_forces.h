@@ -23,7 +23,7 @@ int grid_threads(const GridLayout& grid, int threads);
 
 /// What grid_spring_forces() did.
 struct GridForces {
-  int crushed = 0;         ///< cells with signed volume below kCrushedVolumeFraction of the rest volume
+  int crushed = 0;          ///< cells with signed volume below kCrushedVolumeFraction of the rest volume
   double fastest_sq = 0.0;  ///< with a kick: the largest squared speed [m^2/s^2], NaN if not finite
 };
 

@@ -88,8 +88,8 @@ double kick_nodes_of_kind(const GridKick& kick, const int* point_of_node, const 
 
 }  // namespace
 
-double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
-                       int begin, int end, Eigen::Matrix3Xd& forces) {
+double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3], int begin,
+                       int end, Eigen::Matrix3Xd& forces) {
   CUBESPRING_ASSERT(kick.kick.to != kick.kick.from && kick.kick.to != &kick.state);  // read and written apart
   const double fastest_sq = kick_nodes_of_kind(kick, point_of_node, spring_force, begin, end, forces);
   const KickDrift& k = kick.kick;

@@ -31,7 +31,7 @@ struct GridKick {
 /// Returns the kick's largest squared speed [m^2/s^2], NaN if a speed or a new position of the
 /// kick (an omp simd reduction: a max, and a sum of (a - a) that is +0 or NaN in any order) or a
 /// driven velocity is not finite.
-double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3],
-                       int begin, int end, Eigen::Matrix3Xd& forces);
+double kick_grid_nodes(const GridKick& kick, const int* point_of_node, const double* const spring_force[3], int begin,
+                       int end, Eigen::Matrix3Xd& forces);
 
 }  // namespace cubespring

@@ -26,9 +26,9 @@ struct SpringFamily {
   int from = 0, to = 0;
   Eigen::Vector3i from_corner{0, 0, 0}, to_corner{0, 0, 0};  ///< the same steps, in cells along x, y, z
   int rows = 0, slabs = 0;
-  double rest_length = 0;           ///< the same for every spring of the family [m]
-  std::vector<double> stiffness;    ///< per point [N/m]; 0 where the body has no such spring
-  std::vector<double> damping;      ///< beta times stiffness [N s/m]; empty without stiffness damping
+  double rest_length = 0;         ///< the same for every spring of the family [m]
+  std::vector<double> stiffness;  ///< per point [N/m]; 0 where the body has no such spring
+  std::vector<double> damping;    ///< beta times stiffness [N s/m]; empty without stiffness damping
   /// A family of a body of one material: stiffness and damping are these times the number of
   /// the spring's cells in the body (a diagonal's 1, an edge's 1 to 4; GridLayout::edge_cells)
   /// at every point, and the passes count them from the cells' occupancy instead.
@@ -52,19 +52,19 @@ struct GridLayout {
   /// side beyond the grid, so that a spring or a cell at any point may read its neighbours
   /// without bounds checks.
   int padding = 0;
-  std::vector<int> point_of_node;       ///< model node -> grid point, increasing
-  Eigen::Matrix3Xd rest_points;         ///< rest position of every point [m]
+  std::vector<int> point_of_node;  ///< model node -> grid point, increasing
+  Eigen::Matrix3Xd rest_points;    ///< rest position of every point [m]
   std::array<SpringFamily, kSpringFamilies> families;
 
   // cells, indexed by the point of their corner 0 (zero outside the body)
   std::array<std::vector<double>, 6> correction;  ///< D: xx, yy, zz, xy, xz, yz [Pa]
-  std::vector<double> cell_beta;        ///< the material's beta [s]; empty without stiffness damping
+  std::vector<double> cell_beta;                  ///< the material's beta [s]; empty without stiffness damping
   /// 1 for a cell of the body, else 0; from index occupied_padding() (zeros before it: the cells
   /// around an edge lie up to a step back along each other axis, the layer below the grid too)
   std::vector<double> cell_occupied;
-  std::vector<double> cell_twist;       ///< zeta G [Pa] (exact-bending model); empty without twist
+  std::vector<double> cell_twist;  ///< zeta G [Pa] (exact-bending model); empty without twist
   bool has_twist = false;
-  int cell_rows = 0, cell_slabs = 0;    ///< cells per x-row are whole rows too
+  int cell_rows = 0, cell_slabs = 0;  ///< cells per x-row are whole rows too
   /// Every cell has the same correction, twist stiffness and beta (a body of one material): the
   /// cell pass takes these times cell_occupied and leaves the per-cell arrays above in memory.
   bool uniform_cells = false;

@@ -36,19 +36,19 @@ struct Box {
 };
 
 struct OrganSpec {
-  std::string mesh;                 ///< surface mesh file (resolved path)
-  double scale = 1.0;               ///< metres per file unit
-  double cell_size = 0.008;         ///< cubic cell edge [m]; used when cells_across is 0
-  int cells_across = 0;             ///< when > 0: this many cells along the mesh's longest side
+  std::string mesh;          ///< surface mesh file (resolved path)
+  double scale = 1.0;        ///< metres per file unit
+  double cell_size = 0.008;  ///< cubic cell edge [m]; used when cells_across is 0
+  int cells_across = 0;      ///< when > 0: this many cells along the mesh's longest side
   CellModel model = CellModel::kExactBending;
   CellLaw law = CellLaw::kNeoHookean;  ///< the cells' large-strain law (cell_law.h)
   /// Tissue by the mesh's material name (or part name); parts not listed get default_tissue().
   std::map<std::string, Material> materials;
   std::map<std::string, int> material_lines;  ///< line of each materials entry in the scene file
-  std::vector<Box> fixed_regions;   ///< nodes resting in these boxes are fixed (held in place)
-  double friction = 0.3;            ///< Coulomb mu between the tissue and every rigid body [-]
-  bool face_contacts = true;        ///< tools thinner than the surface's vertex spacing cannot slip through
-  double contact_offset = 0.0;      ///< skin kept between the tissue and rigid surfaces [m]
+  std::vector<Box> fixed_regions;             ///< nodes resting in these boxes are fixed (held in place)
+  double friction = 0.3;                      ///< Coulomb mu between the tissue and every rigid body [-]
+  bool face_contacts = true;                  ///< tools thinner than the surface's vertex spacing cannot slip through
+  double contact_offset = 0.0;                ///< skin kept between the tissue and rigid surfaces [m]
 };
 
 struct TableSpec {
@@ -60,8 +60,8 @@ struct TableSpec {
 /// A rigid tool's pose at a moment; poses in between are interpolated (position linearly,
 /// orientation by slerp); before the first key frame and after the last the tool stands still.
 struct Keyframe {
-  double time = 0.0;                                        ///< [s]
-  Eigen::Vector3d position{0, 0, 0};                        ///< of the tool's local origin [m]
+  double time = 0.0;                  ///< [s]
+  Eigen::Vector3d position{0, 0, 0};  ///< of the tool's local origin [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
 };
 
@@ -74,10 +74,10 @@ struct CapsuleSpec {
 /// capsule is the contact shape, and is drawn when there is no mesh.
 struct ToolSpec {
   std::string name;
-  std::string mesh;                    ///< surface mesh (resolved path), or empty
-  double scale = 1.0;                  ///< multiplies the mesh's and the capsule's sizes
+  std::string mesh;    ///< surface mesh (resolved path), or empty
+  double scale = 1.0;  ///< multiplies the mesh's and the capsule's sizes
   std::optional<CapsuleSpec> capsule;
-  std::vector<Keyframe> keyframes;     ///< sorted by time
+  std::vector<Keyframe> keyframes;  ///< sorted by time
 };
 
 enum class ColourMode { kDisplacement, kStrain, kNone };
@@ -88,7 +88,7 @@ struct RenderSpec {
   int supersampling = 2;
   Camera camera;
   std::vector<Light> lights = default_lights();  ///< directional lights, at most 8
-  double ambient = 0.25;  ///< fraction of a surface's colour seen without any light, in [0, 1]
+  double ambient = 0.25;                         ///< fraction of a surface's colour seen without any light, in [0, 1]
   bool wireframe = false;
   ColourMode colour_map = ColourMode::kDisplacement;
   double colour_range = 0.01;  ///< displacement shown at the top of the colour scale [m]
@@ -102,11 +102,11 @@ struct Scene {
   std::vector<ToolSpec> tools;
   Eigen::Vector3d gravity{0, 0, -9.81};  ///< [m/s^2]
   Integrator integrator = Integrator::kSymplecticEuler;
-  double time_step = 0.004;        ///< Bullet step [s]; soft bodies sub-step inside it
-  double settle_time = 1.0;        ///< simulated before t = 0 so the organ rests on the table [s]
-  double duration = 0.0;           ///< simulated time [s]; the last key frame's when not given
-  double frame_rate = 24.0;        ///< frames per simulated second, when `frames` is not given
-  int frames = 0;                  ///< frames evenly over the duration (first at 0, last at the end)
+  double time_step = 0.004;  ///< Bullet step [s]; soft bodies sub-step inside it
+  double settle_time = 1.0;  ///< simulated before t = 0 so the organ rests on the table [s]
+  double duration = 0.0;     ///< simulated time [s]; the last key frame's when not given
+  double frame_rate = 24.0;  ///< frames per simulated second, when `frames` is not given
+  int frames = 0;            ///< frames evenly over the duration (first at 0, last at the end)
   RenderSpec render;
   std::string output = "cubespring-demo-output";  ///< relative to the current directory
 

@@ -8,20 +8,20 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <btBulletDynamicsCommon.h>
+#include <Eigen/Geometry>
 
 #include "cubespring/bullet/world.h"
 #include "cubespring/result.h"
-#include "cubespring/triangle_mesh.h"
 #include "cubespring/scene/scene.h"
+#include "cubespring/triangle_mesh.h"
 
 namespace cubespring::scene {
 
 struct SceneTool {
   std::string name;
   std::vector<Keyframe> keyframes;
-  TriangleMesh mesh;                  ///< in the tool's frame (tip at the origin), for drawing
+  TriangleMesh mesh;  ///< in the tool's frame (tip at the origin), for drawing
   Eigen::Isometry3d shape_offset = Eigen::Isometry3d::Identity();  ///< collision body in the tool's frame
   std::unique_ptr<btCollisionShape> shape;
   std::unique_ptr<btRigidBody> body;  ///< kinematic
@@ -32,8 +32,8 @@ struct OrganSummary {
   int cells = 0;
   int nodes = 0;
   int fixed_nodes = 0;
-  double cell_size = 0.0;  ///< [m]
-  double sub_step = 0.0;   ///< the soft body's sub-step [s]
+  double cell_size = 0.0;          ///< [m]
+  double sub_step = 0.0;           ///< the soft body's sub-step [s]
   std::vector<std::string> notes;  ///< e.g. parts that took the default tissue
 };
 

@@ -34,8 +34,9 @@ struct ContactSettings {
   /// Also test convex tools other than spheres and capsules against the inside of surface
   /// triangles whose corners they miss, so that a tip thinner than a cell cannot pass between
   /// vertices. Spheres and capsules meet the whole surface, and boxes' edges the triangles between
-  /// vertices, whatever this says (docs/bullet-plugin.md sections 2.6 and 2.7). Off by default: on an asymmetric triangulation it pushed round bodies resting
-  /// in a dimple sideways, and they rolled (docs/bullet-plugin.md section 5).
+  /// vertices, whatever this says (docs/bullet-plugin.md sections 2.6 and 2.7). Off by default: on an asymmetric
+  /// triangulation it pushed round bodies resting in a dimple sideways, and they rolled (docs/bullet-plugin.md section
+  /// 5).
   bool face_contacts = false;
   /// Contact is a projection, not a penalty spring: it has no stiffness to tune, at any scale.
   /// Its one length is this skin [m], >= 0: the tissue is kept this far outside every rigid
@@ -114,9 +115,9 @@ class SoftBody {
   /// The first surface triangle a segment from `from` to `to` [m] crosses: for picking.
   struct RayHit {
     int triangle = -1;
-    int nearest_node = -1;       ///< lattice node with the largest weight at the hit point
+    int nearest_node = -1;  ///< lattice node with the largest weight at the hit point
     Eigen::Vector3d point{0, 0, 0};
-    double fraction = 0.0;       ///< along the segment, 0 at `from`
+    double fraction = 0.0;  ///< along the segment, 0 at `from`
   };
   std::optional<RayHit> ray_test(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
 
@@ -125,9 +126,10 @@ class SoftBody {
   /// Wall time the world has spent on this body's sub-steps, by part, since it was created [s]:
   /// where a scene's physics time goes (`cubespring bench-render` prints it).
   struct Times {
-    double elastic = 0.0;   ///< the lattice's own step: forces, kick and drift
-    double surface = 0.0;   ///< the contact surface refreshed from the nodes: near the rigid bodies after that step, all of it once a world step
-    double contact = 0.0;   ///< contacts with rigid bodies found and resolved
+    double elastic = 0.0;  ///< the lattice's own step: forces, kick and drift
+    double surface = 0.0;  ///< the contact surface refreshed from the nodes: near the rigid bodies after that step, all
+                           ///< of it once a world step
+    double contact = 0.0;  ///< contacts with rigid bodies found and resolved
     double planning = 0.0;  ///< the sub-step's length chosen from the cells' thickness
     long sub_steps = 0;
   };

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <btBulletDynamicsCommon.h>
+#include <Eigen/Core>
 
 #include "cubespring/bullet/soft_body.h"
 
