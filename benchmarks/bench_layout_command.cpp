@@ -38,7 +38,7 @@ struct LayoutRow {
   CellModel model = CellModel::kBaudet2007;
   bool inclusion = false;
   double lists[2] = {0, 0}, grid[2] = {0, 0};  // [s] per step, 1 and 2 threads
-  bool default_grid = false;                   // what build_model() picks
+  bool default_grid = false;                   // what the default min_grid_fill picks
 };
 
 // A solid ball fills about pi / 6 of its box: the most a ball can.
@@ -159,8 +159,8 @@ int run_bench_layout(const LayoutOptions& o) {
   }
   std::printf(
       "fill: cells over the cells of their bounding box; lists/grid > 1: the grid is faster; default: the\n"
-      "layout build_model() picks (the grid from a fill of %.2f, kDefaultMinGridFill); inclusion: the\n"
-      "ball's lowest third in x 10 times stiffer.\n",
+      "layout the default ForceOptions::min_grid_fill picks (the grid from a fill of %.2f,\n"
+      "kDefaultMinGridFill); inclusion: the ball's lowest third in x 10 times stiffer.\n",
       kDefaultMinGridFill);
   return 0;
 }

@@ -88,14 +88,16 @@ struct Model {
   bool has_stiffness_damping = false;  ///< some material has beta > 0
   bool has_mass_damping = false;       ///< some material has alpha > 0
 
-  /// Which version of these arrays this is: build_model() and mark_changed() give a number no
-  /// other model of this process has had. Whoever steps the model keeps a force engine built
-  /// from it (its thread blocks and, for a body that fills its box, its grid with its own copy
-  /// of the stiffnesses: forces.h, ForceWorkspace) and rebuilds it when the revision or the
-  /// node, spring or cell count changes. A copy keeps the revision: its arrays are the same.
-  std::uint64_t revision = 0;
-  /// After changing a built model's arrays in place (stiffnesses, damping, corrections,
-  /// materials' constants), call this once so that every engine built from it is rebuilt.
+  /// Which version of these arrays this is: each model made (by build_model() or by hand) and
+  /// each mark_changed() gets a number no other model of this process has had. Whoever steps
+  /// the model keeps a force engine built from it (its thread blocks and, for a body that fills
+  /// its box, its grid with its own copy of the stiffnesses: forces.h, ForceWorkspace) and
+  /// rebuilds it when the revision or the node, spring or cell count changes. A copy keeps the
+  /// revision: its arrays are the same.
+  std::uint64_t revision = next_revision();
+  /// After changing a model's arrays in place once an engine may have been built from it
+  /// (stiffnesses, damping, corrections, twist, law constants, cell_law, has_twist,
+  /// has_stiffness_damping), call this once so that every such engine is rebuilt.
   void mark_changed();
 
   int num_nodes() const { return static_cast<int>(rest_positions.cols()); }
@@ -111,6 +113,7 @@ struct Model {
 
  private:
   friend Result<Model> build_model(const LatticeDesc& desc);
+  static std::uint64_t next_revision();
   std::vector<std::int64_t> sorted_node_keys_;  // grid key of each node, ascending (= node order)
 };
 

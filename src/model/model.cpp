@@ -104,11 +104,13 @@ struct EdgeRecord {
 
 }  // namespace
 
-void Model::mark_changed() {
+std::uint64_t Model::next_revision() {
   // one counter for the process: two models never share a revision unless one is the other's copy
-  static std::atomic<std::uint64_t> next_revision{1};
-  revision = next_revision.fetch_add(1, std::memory_order_relaxed);
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
 }
+
+void Model::mark_changed() { revision = next_revision(); }
 
 void update_grid_layout(Model& model, double /*min_fill*/) { model.mark_changed(); }
 

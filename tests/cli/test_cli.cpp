@@ -417,7 +417,7 @@ TEST(Cli, BenchRowsCountTheBodyAndTimeEveryColumn) {
 }
 
 // A short bench-layout run: each fill in both models, one material and with an inclusion, on the
-// same hollow ball (the same cell count), near the fill asked; the layout build_model() picks is
+// same hollow ball (the same cell count), near the fill asked; the layout the default fill picks is
 // the grid exactly from kDefaultMinGridFill (0.45) on (a ball of 20 across fills 0.450: 3600 of
 // 8000 cells); every time positive. A fill that is not a fraction is refused by name.
 TEST(Cli, BenchLayoutTimesBothLayoutsByFill) {

@@ -401,6 +401,7 @@ TEST(Forces, OneMaterialsConstantsGiveThePerPointArraysBits) {
         Eigen::Matrix3Xd by_constants, by_arrays;
         compute_forces(constants, state, Loads{}, ForceOptions{true, 1}, ws_constants, by_constants);
         compute_forces(per_point, state, Loads{}, ForceOptions{true, 1}, ws_arrays, by_arrays);
+        ASSERT_EQ(ws_arrays.engine->grid, arrays) << what << ": the per-point grid was not the one stepped";
         ASSERT_GT(by_arrays.cwiseAbs().maxCoeff(), 0.0) << what;
         EXPECT_TRUE(by_constants == by_arrays) << what << (crushed ? ", crushed" : "");
       }

@@ -342,6 +342,39 @@ TEST(Integrator, SameRunTwiceIsBitIdenticalOnOneAndTwoThreads) {
   }
 }
 
+// Each integrator's forces come from the passes StepSettings::min_grid_fill chooses: its
+// last_forces() are bit for bit those of compute_forces() with that fill at the state it reads
+// (the step's start for symplectic and implicit Euler; the implicit step's without damping),
+// and the grid's and the lists' forces differ in their last bits, so the check tells them apart.
+TEST(Integrator, EveryStepTakesThePassesItsSettingsChoose) {
+  Material m = test::notes_material(0.3);
+  m.stiffness_damping = 1e-4;
+  const Model model = test::box_model({6, 4, 3}, m);
+  ASSERT_TRUE(uses_grid_passes(model));
+  const State start = wobbling_block(model);
+  Loads loads;
+  loads.gravity = {0, 0, -9.81};
+  for (const Integrator integrator : {Integrator::kSymplecticEuler, Integrator::kImplicitEuler}) {
+    const bool implicit = integrator == Integrator::kImplicitEuler;
+    Eigen::Matrix3Xd expected[2];
+    for (int i = 0; i < 2; ++i) {
+      ForceWorkspace ws;
+      compute_forces(model, start, loads, ForceOptions{!implicit, 1, kLayouts[i].min_grid_fill}, ws, expected[i]);
+    }
+    ASSERT_FALSE(expected[0] == expected[1]) << "the grid's and the lists' forces are the same bits: no test";
+    for (int i = 0; i < 2; ++i) {
+      StepSettings settings;
+      settings.integrator = integrator;
+      settings.time_step = 0.5 * max_stable_time_step(model);
+      settings.min_grid_fill = kLayouts[i].min_grid_fill;
+      State state = start;
+      Stepper stepper(model);
+      ASSERT_TRUE(stepper.step(model, Constraints(model), loads, settings, state).ok());
+      EXPECT_TRUE(stepper.last_forces() == expected[i]) << integrator_name(integrator) << ", " << kLayouts[i].name;
+    }
+  }
+}
+
 // The explicit steps of a dense body run on its grid passes; the same steps on the spring lists
 // give the same states to rounding: damped, under gravity, clamped, and with a cell crushed at
 // the start (its corners' kick is redone with its recovery).
