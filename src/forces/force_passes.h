@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Passes of forces.cpp shared with the stiffness assembly and the explicit integrators.
+// Passes of forces.cpp shared with the stiffness assembly and the explicit integrators (the
+// kick-drift itself: kick_drift.h).
 #pragma once
 
 #include <cmath>
@@ -9,6 +10,7 @@
 
 #include "cubespring/constraints.h"
 #include "cubespring/forces.h"
+#include "forces/kick_drift.h"
 
 namespace cubespring {
 
@@ -18,23 +20,6 @@ inline constexpr double kDegenerateLengthFraction = 1e-12;
 
 /// Fills ws.spring_length, ws.cell_tension and ws.spring_tension (no damping) at positions x.
 void measure_tensions(const Model& model, const Eigen::Matrix3Xd& x, ForceWorkspace& ws);
-
-/// One kick-drift of every node, v' = v + kick M^-1 f, x' = x + drift v', from `from` into `to`
-/// (a different State): kick and drift [s]. The nodes that `driven` (constraints of this model)
-/// drives then reach their target instead, from their position in drive_start (null: `from`)
-/// over drive_step [s] (0: `drift`; drive_nodes.h).
-struct KickDrift {
-  double kick = 0.0;
-  double drift = 0.0;
-  const State* from = nullptr;
-  State* to = nullptr;
-  const Constraints* driven = nullptr;
-  const State* drive_start = nullptr;
-  double drive_step = 0.0;
-
-  const State& start_of_drive() const { return drive_start != nullptr ? *drive_start : *from; }
-  double step_of_drive() const { return drive_step > 0.0 ? drive_step : drift; }
-};
 
 /// compute_forces() followed by the kick-drift, each node moved as soon as its force is complete
 /// (while it is still in cache). Returns the largest squared speed [m^2/s^2] of the kick

@@ -25,11 +25,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "forces/correction_tension.h"
 #include "forces/drive_nodes.h"
 #include "forces/force_engine.h"
 #include "forces/force_passes.h"
 #include "forces/grid/grid_forces.h"
 #include "forces/input_checks.h"
+#include "forces/kick_drift.h"
 #include "forces/twist.h"
 #include "model/cell_geometry.h"
 #include "model/neo_hookean_cell.h"
@@ -164,41 +166,43 @@ inline CellFrame frame_from_diagonals(const Model& model, const ForceWorkspace& 
   return frame;
 }
 
-// Pass 2 over cells [begin, end). Correction tension T_a = V0 (D (eps + beta d(eps)/dt))_a / (4 a0)
-// on each a-edge of a cell, and the crushed flag from the signed volume of the mean edge vectors,
-// which the diagonals give. With a corner target, also the twist forces (exact bending). Returns
-// the number of crushed cells.
-// The correction tension of cell c on each of its edges from the lengths (and, with_rate, the
-// length rates) pass 1 measured.
-void correction_tension(const Model& model, bool with_rate, int c, ForceWorkspace& ws) {
+// The correction tensions of cell c on its edges along each axis (correction_tension.h) from the
+// lengths (and, with_rate, the length rates) pass 1 measured.
+void cell_correction_tensions(const Model& model, bool with_rate, int c, ForceWorkspace& ws) {
   const Eigen::Vector3d& size = model.cell_size;
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * size.array()).inverse();
   const Eigen::Array3d tension_per_stress = size.prod() * inverse_edge_sum;
   const std::array<int, kEdgesPerCell>& edges = model.cell_edges[c];
-  Eigen::Array3d length_sum, rate_sum = Eigen::Array3d::Zero();
+  const double beta = with_rate ? model.materials[model.cell_material[c]].stiffness_damping : 0.0;
+  double strain[3];
   for (int axis = 0; axis < 3; ++axis) {
     const int* e = edges.data() + axis * kEdgesPerAxis;
-    length_sum[axis] =
+    const double length_sum =
         (ws.spring_length[e[0]] + ws.spring_length[e[1]]) + (ws.spring_length[e[2]] + ws.spring_length[e[3]]);
-    if (with_rate)
-      rate_sum[axis] = (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
+    strain[axis] = mean_edge_strain(length_sum, inverse_edge_sum[axis]);
+    if (with_rate) {
+      const double rate_sum =
+          (ws.spring_rate[e[0]] + ws.spring_rate[e[1]]) + (ws.spring_rate[e[2]] + ws.spring_rate[e[3]]);
+      strain[axis] = damped_edge_strain(strain[axis], beta, rate_sum, inverse_edge_sum[axis]);
+    }
   }
-  Eigen::Vector3d strain = (length_sum * inverse_edge_sum - 1.0).matrix();
-  if (with_rate) {
-    const double beta = model.materials[model.cell_material[c]].stiffness_damping;
-    strain += (beta * (rate_sum * inverse_edge_sum)).matrix();
+  const Eigen::Matrix3d& d = model.cell_correction[c];
+  for (int axis = 0; axis < 3; ++axis) {
+    ws.cell_tension(axis, c) = correction_tension(tension_per_stress[axis], d(axis, 0), d(axis, 1), d(axis, 2),
+                                                  strain[0], strain[1], strain[2]);
   }
-  const Eigen::Vector3d stress = model.cell_correction[c] * strain;
-  ws.cell_tension.col(c) = (tension_per_stress * stress.array()).matrix();
 }
 
+// Pass 2 over cells [begin, end): the correction tensions, and the crushed flag from the signed
+// volume of the mean edge vectors, which the diagonals give. With a corner target, also the
+// twist forces (exact bending). Returns the number of crushed cells.
 int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorkspace& ws,
               const CornerTarget* twist = nullptr) {
   const double crushed_volume = kCrushedVolumeFraction * model.cell_size.prod();
   const DiagonalSigns signs(model);
   int crushed = 0;
   for (int c = begin; c < end; ++c) {
-    correction_tension(model, with_rate, c, ws);
+    cell_correction_tensions(model, with_rate, c, ws);
 
     const bool is_crushed = frame_from_diagonals(model, ws, signs, c).volume() < crushed_volume;
     ws.cell_crushed[c] = is_crushed;
@@ -216,7 +220,7 @@ int cell_pass(const Model& model, bool with_rate, int begin, int end, ForceWorks
 int neo_hookean_cell_pass(const Model& model, int begin, int end, ForceWorkspace& ws, const CornerTarget* target) {
   const DiagonalSigns signs(model);
   for (int c = begin; c < end; ++c) {
-    correction_tension(model, false, c, ws);
+    cell_correction_tensions(model, false, c, ws);
     ws.cell_crushed[c] = 0;
     if (target == nullptr) continue;
     MeanEdgeGradient gradient;
@@ -409,13 +413,35 @@ struct NodeLoads {
         with_mass_damping(options.damping && m.has_mass_damping),
         with_nodal(l.nodal_forces.cols() == m.num_nodes()) {}
 
-  // (gravity added even when zero: the grid's kick, grid_kick.cpp, vectorises without a branch)
   void add(int n, Eigen::Matrix3Xd& forces) const {
-    if (with_mass_damping) forces.col(n) -= model.mass_damping[n] * state.velocities.col(n);
-    forces.col(n) += model.mass[n] * loads.gravity;
-    if (with_nodal) forces.col(n) += loads.nodal_forces.col(n);
+    for (int axis = 0; axis < 3; ++axis) {
+      forces(axis, n) =
+          with_node_loads(forces(axis, n), with_mass_damping, with_mass_damping ? model.mass_damping[n] : 0.0,
+                          with_mass_damping ? state.velocities(axis, n) : 0.0, model.mass[n], loads.gravity[axis],
+                          with_nodal, with_nodal ? loads.nodal_forces(axis, n) : 0.0);
+    }
   }
 };
+
+// Node n's kick-drift with its complete force (kick_drift.h), into `to` unless it is null.
+// Returns its squared speed [m^2/s^2], NaN if a new position is not finite.
+double kick_node(const Model& model, const Eigen::Matrix3Xd& forces, const KickDrift& kick, int n, State* to) {
+  const State& from = *kick.from;
+  const double rate = kick.kick / model.mass[n];
+  double speed_sq = 0.0;
+  bool finite = true;
+  for (int axis = 0; axis < 3; ++axis) {
+    const KickedCoordinate kicked =
+        kick_and_drift(from.velocities(axis, n), from.positions(axis, n), rate, kick.drift, forces(axis, n));
+    if (to != nullptr) {
+      to->velocities(axis, n) = kicked.velocity;
+      to->positions(axis, n) = kicked.position;
+    }
+    speed_sq += kicked.velocity * kicked.velocity;
+    finite = finite && std::isfinite(kicked.position);
+  }
+  return finite ? speed_sq : std::numeric_limits<double>::quiet_NaN();
+}
 
 // Which cells are crushed (ws.cell_crushed), when some are.
 void find_crushed_cells(const Model& model, const State& state, ForceWorkspace& ws) {
@@ -429,13 +455,10 @@ void find_crushed_cells(const Model& model, const State& state, ForceWorkspace& 
 // used (a driven node's kicked velocity is gone from `to`): the largest squared speed, NaN if a
 // kicked position or a driven velocity is not finite.
 double fastest_after_kick(const Model& model, const Eigen::Matrix3Xd& forces, const KickDrift& kick) {
-  const State& from = *kick.from;
   const std::uint8_t* driven = kick.driven != nullptr ? kick.driven->driven_flags() : nullptr;
   double fastest_sq = 0.0;
   for (int n = 0; n < model.num_nodes(); ++n) {
-    const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
-    const Eigen::Vector3d x = from.positions.col(n) + kick.drift * v;
-    double speed_sq = x.allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+    double speed_sq = kick_node(model, forces, kick, n, nullptr);
     if (driven != nullptr && driven[n] != 0 && !kick.to->velocities.col(n).allFinite()) {
       speed_sq = std::numeric_limits<double>::quiet_NaN();
     }
@@ -561,17 +584,13 @@ void compute_forces(const Model& model, const State& state, const Loads& loads, 
 double compute_forces_and_kick(const Model& model, const State& state, const Loads& loads, const ForceOptions& options,
                                ForceWorkspace& ws, Eigen::Matrix3Xd& forces, const KickDrift& kick) {
   const NodeLoads node_loads(model, state, loads, options);
-  const State& from = *kick.from;
   State& to = *kick.to;
   const GridKick grid_kick{model, state, loads, node_loads.with_mass_damping, kick};
   return force_sweep(
       model, state, options, ws, forces,
       [&](int n) {
         node_loads.add(n, forces);
-        const Eigen::Vector3d v = from.velocities.col(n) + (kick.kick / model.mass[n]) * forces.col(n);
-        to.velocities.col(n) = v;
-        to.positions.col(n) = from.positions.col(n) + kick.drift * v;
-        double speed_sq = to.positions.col(n).allFinite() ? v.squaredNorm() : std::numeric_limits<double>::quiet_NaN();
+        double speed_sq = kick_node(model, forces, kick, n, &to);
         if (kick.driven != nullptr && !drive_node(*kick.driven, kick.step_of_drive(), kick.start_of_drive(), to, n)) {
           speed_sq = std::numeric_limits<double>::quiet_NaN();
         }
@@ -604,7 +623,7 @@ double elastic_energy(const Model& model, const Eigen::Matrix3Xd& x) {
     for (int axis = 0; axis < 3; ++axis) {
       double sum = 0.0;
       for (int e = 0; e < kEdgesPerAxis; ++e) sum += length[model.cell_edges[c][axis * kEdgesPerAxis + e]];
-      strain[axis] = sum / (kEdgesPerAxis * model.cell_size[axis]) - 1.0;
+      strain[axis] = mean_edge_strain(sum, 1.0 / (kEdgesPerAxis * model.cell_size[axis]));
     }
     energy += 0.5 * rest_volume * strain.dot(model.cell_correction[c] * strain);
     if (model.has_twist) {

@@ -45,6 +45,17 @@ constexpr std::array<std::array<TwistFace, 2>, 3> make_twist_faces() {
 inline constexpr std::array<std::array<TwistFace, 2>, 3> kTwistFaces = make_twist_faces();
 inline const std::array<std::array<TwistFace, 2>, 3>& twist_faces() { return kTwistFaces; }
 
+/// w_d of a cell: the dot products of the mean a- and c-edge vectors of its lower and upper faces
+/// normal to d [m^2] over h^2, for a cell of side h [m].
+[[gnu::always_inline]] inline double twist_shear(double lower_dot, double upper_dot, double h) {
+  return (upper_dot - lower_dot) / (h * h);
+}
+
+/// Q_d = k h w_d / 2 [N/m], the coefficient of the twist's forces (stiffness k [Pa]): each edge of
+/// the upper face gets +Q_d times the face's mean of the other in-plane edges, of the lower -Q_d.
+/// The grid passes (forces/grid/grid_forces.cpp) and the spring lists (below) both use these two.
+[[gnu::always_inline]] inline double twist_coefficient(double w, double k, double h) { return 0.5 * k * h * w; }
+
 /// Mean a- and c-edge vectors of a face.
 struct FaceMeans {
   Eigen::Vector3d a, c;
@@ -65,12 +76,12 @@ inline double twist_energy(const std::array<Eigen::Vector3d, kEdgesPerCell>& edg
   for (int d = 0; d < 3; ++d) {
     const FaceMeans lower = face_means(faces[d][0], edges);
     const FaceMeans upper = face_means(faces[d][1], edges);
-    const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
+    const double w = twist_shear(lower.a.dot(lower.c), upper.a.dot(upper.c), h);
     energy += 0.5 * k * h * h * h * w * w;
     // dW/d(edge) = +-k h w / 2 times the other mean on that face
     for (int side = 0; side < 2; ++side) {
       const FaceMeans& means = side == 0 ? lower : upper;
-      const double coefficient = (side == 0 ? -0.5 : 0.5) * k * h * w;
+      const double coefficient = side == 0 ? -twist_coefficient(w, k, h) : twist_coefficient(w, k, h);
       for (int t = 0; t < 2; ++t) {
         add_force(faces[d][side].a_edges[t], coefficient * means.c);
         add_force(faces[d][side].c_edges[t], coefficient * means.a);
@@ -89,8 +100,7 @@ inline void add_twist_face_forces(const std::array<Eigen::Vector3d, kEdgesPerCel
   constexpr int c = d == 2 ? 1 : 2;
   const FaceMeans lower = face_means(kTwistFaces[d][0], edges);
   const FaceMeans upper = face_means(kTwistFaces[d][1], edges);
-  const double w = (upper.a.dot(upper.c) - lower.a.dot(lower.c)) / (h * h);
-  const double coefficient = 0.5 * k * h * w;
+  const double coefficient = twist_coefficient(twist_shear(lower.a.dot(lower.c), upper.a.dot(upper.c), h), k, h);
   // lower face (side 0): coefficient -q; upper face (side 1): +q
   const Eigen::Vector3d lower_sum = coefficient * (lower.a + lower.c);
   const Eigen::Vector3d lower_difference = coefficient * (lower.a - lower.c);

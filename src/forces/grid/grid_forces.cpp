@@ -31,9 +31,11 @@
 #include <thread>
 
 #include "cubespring/forces.h"
+#include "forces/correction_tension.h"
 #include "forces/force_passes.h"
 #include "forces/grid/grid_arrays.h"
 #include "forces/grid/vector_clones.h"
+#include "forces/twist.h"
 #include "invariant.h"
 #include "model/neo_hookean_cell.h"
 #include "thread_shares.h"
@@ -154,10 +156,9 @@ inline double edge_sum(const CellEdges& edges, int g) {
 // upper face of one cell and the lower of the next along d, so an edge gets, from each face F it
 // lies on, (Q_d[F - step d] - Q_d[F]) times the face's mean of its other in-plane edges.
 
-// Q_d of a cell from 4 x its faces' dot products (measure_diagonals).
-inline double twist_coefficient(double lower_4, double upper_4, double stiffness, double h) {
-  const double lower = 0.25 * lower_4, upper = 0.25 * upper_4;
-  return 0.5 * stiffness * h * ((upper - lower) / (h * h));
+// Q_d of a cell from 4 x its faces' dot products (measure_diagonals; twist.h's formula).
+inline double twist_coefficient_of_4(double lower_4, double upper_4, double stiffness, double h) {
+  return twist_coefficient(twist_shear(0.25 * lower_4, 0.25 * upper_4, h), stiffness, h);
 }
 
 // Pass 1 for the 4 diagonal families on one z-layer at once (no correction: their forces at
@@ -205,7 +206,7 @@ CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab,
     double d[4][3];   // diagonal k's vector, corner 7 - k minus corner k
     double dv[4][3];  // and its velocity difference
     // twist: 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y,
-    // z, lower and upper (twist_coefficient)
+    // z, lower and upper (twist_coefficient_of_4)
     double x_lower = 0.0, x_upper = 0.0, y_lower = 0.0, y_upper = 0.0, z_lower = 0.0, z_upper = 0.0;
 #pragma GCC unroll 3
     for (int c = 0; c < 3; ++c) {
@@ -262,9 +263,9 @@ CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab,
     crushed += static_cast<int>((occupied[g] > 0.0) & (volume < crushed_volume_64));
     if constexpr (kTwist) {
       const double twist = kUniform ? occupied[g] * uniform_twist : twist_stiffness[g];
-      qx[g] = twist_coefficient(x_lower, x_upper, twist, h);
-      qy[g] = twist_coefficient(y_lower, y_upper, twist, h);
-      qz[g] = twist_coefficient(z_lower, z_upper, twist, h);
+      qx[g] = twist_coefficient_of_4(x_lower, x_upper, twist, h);
+      qy[g] = twist_coefficient_of_4(y_lower, y_upper, twist, h);
+      qz[g] = twist_coefficient_of_4(z_lower, z_upper, twist, h);
     }
   }
   return crushed;
@@ -299,24 +300,24 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
   double* __restrict tension_z = a.out(kCellTension + 2, slab);
 #pragma omp simd
   for (int g = 0; g < count; ++g) {
-    double ex = edge_sum(lx, g) * ix - 1.0;
-    double ey = edge_sum(ly, g) * iy - 1.0;
-    double ez = edge_sum(lz, g) * iz - 1.0;
+    double ex = mean_edge_strain(edge_sum(lx, g), ix);
+    double ey = mean_edge_strain(edge_sum(ly, g), iy);
+    double ez = mean_edge_strain(edge_sum(lz, g), iz);
     if constexpr (kWithRate) {
       const double b = kUniform ? uniform_beta : beta[g];
-      ex += b * (edge_sum(rx, g) * ix);
-      ey += b * (edge_sum(ry, g) * iy);
-      ez += b * (edge_sum(rz, g) * iz);
+      ex = damped_edge_strain(ex, b, edge_sum(rx, g), ix);
+      ey = damped_edge_strain(ey, b, edge_sum(ry, g), iy);
+      ez = damped_edge_strain(ez, b, edge_sum(rz, g), iz);
     }
     if constexpr (kUniform) {
       const double o = occupied[g];
-      tension_x[g] = o * (tx * (uxx * ex + uxy * ey + uxz * ez));
-      tension_y[g] = o * (ty * (uxy * ex + uyy * ey + uyz * ez));
-      tension_z[g] = o * (tz * (uxz * ex + uyz * ey + uzz * ez));
+      tension_x[g] = o * correction_tension(tx, uxx, uxy, uxz, ex, ey, ez);
+      tension_y[g] = o * correction_tension(ty, uxy, uyy, uyz, ex, ey, ez);
+      tension_z[g] = o * correction_tension(tz, uxz, uyz, uzz, ex, ey, ez);
     } else {
-      tension_x[g] = tx * (dxx[g] * ex + dxy[g] * ey + dxz[g] * ez);
-      tension_y[g] = ty * (dxy[g] * ex + dyy[g] * ey + dyz[g] * ez);
-      tension_z[g] = tz * (dxz[g] * ex + dyz[g] * ey + dzz[g] * ez);
+      tension_x[g] = correction_tension(tx, dxx[g], dxy[g], dxz[g], ex, ey, ez);
+      tension_y[g] = correction_tension(ty, dxy[g], dyy[g], dyz[g], ex, ey, ez);
+      tension_z[g] = correction_tension(tz, dxz[g], dyz[g], dzz[g], ex, ey, ez);
     }
   }
 }

@@ -8,6 +8,7 @@
 #include "forces/drive_nodes.h"
 #include "forces/grid/grid_layout.h"
 #include "forces/grid/vector_clones.h"
+#include "forces/kick_drift.h"
 #include "invariant.h"
 
 namespace cubespring {
@@ -47,17 +48,15 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
 #pragma GCC unroll 3
     for (int axis = 0; axis < 3; ++axis) {
       const int i = 3 * n + axis;
-      double f = spring[axis];
-      if constexpr (kMassDamping) f -= mass_damping[n] * damped_velocity[i];
-      f += m * gravity[axis];
-      if constexpr (kNodal) f += nodal[i];
+      const double f =
+          with_node_loads(spring[axis], kMassDamping, kMassDamping ? mass_damping[n] : 0.0,
+                          kMassDamping ? damped_velocity[i] : 0.0, m, gravity[axis], kNodal, kNodal ? nodal[i] : 0.0);
       forces[i] = f;
-      const double v = v0[i] + rate * f;
-      v1[i] = v;
-      const double x = x0[i] + drift * v;
-      x1[i] = x;
-      speed_sq += v * v;
-      poison += x - x;
+      const KickedCoordinate kicked = kick_and_drift(v0[i], x0[i], rate, drift, f);
+      v1[i] = kicked.velocity;
+      x1[i] = kicked.position;
+      speed_sq += kicked.velocity * kicked.velocity;
+      poison += kicked.position - kicked.position;
     }
     poison += speed_sq - speed_sq;
     fastest_sq = fastest_sq > speed_sq ? fastest_sq : speed_sq;

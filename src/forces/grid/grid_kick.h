@@ -25,9 +25,9 @@ struct GridKick {
 };
 
 /// Nodes [begin, end), whose spring forces [N] are at spring_force[axis][point_of_node[n]]: each
-/// force gets its mass damping, gravity and nodal load, in the order and with the bits of the
-/// spring lists' finish (forces.cpp, NodeLoads), into `forces`; then v' = v0 + (kick / m) f and
-/// x' = x0 + drift v' into kick.to; then the driven nodes among them are driven (KickDrift).
+/// force gets its mass damping, gravity and nodal load (with_node_loads, the spring lists' terms
+/// too) into `forces`; then v' = v0 + (kick / m) f and x' = x0 + drift v' into kick.to
+/// (kick_and_drift); then the driven nodes among them are driven (KickDrift; kick_drift.h).
 /// Returns the kick's largest squared speed [m^2/s^2], NaN if a speed or a new position of the
 /// kick (an omp simd reduction: a max, and a sum of (a - a) that is +0 or NaN in any order) or a
 /// driven velocity is not finite.
