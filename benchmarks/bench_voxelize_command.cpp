@@ -41,7 +41,7 @@ using Clock = std::chrono::steady_clock;
 
 constexpr double kMajorRadius = 0.1;   // [m] an organ-sized torus
 constexpr double kMinorRadius = 0.04;  // [m]
-// load_mesh's post-processing (src/mesh/load_mesh.cpp), so that "assimp alone" does the same work
+// load_mesh's post-processing (plugins/mesh/src/load_mesh.cpp), so that "assimp alone" does the same work
 constexpr unsigned kLoadMeshSteps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType;
 // the target: this many triangles at this many cells across in under kTargetSeconds
 constexpr int kTargetTriangles = 100000;

@@ -24,12 +24,14 @@ if(TARGET cubespring_mesh)
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY plugins/mesh/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
 if(TARGET cubespring_render)
   install(TARGETS cubespring_render EXPORT cubespringTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY plugins/render/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
 if(TARGET cubespring_bullet)
   install(TARGETS cubespring_bullet EXPORT cubespringTargets

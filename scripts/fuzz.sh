@@ -13,8 +13,8 @@ shift || true
 formats=("${@:-ply off dae gltf}")
 compiler=$(command -v clang++-16 || command -v clang++-14 || command -v clang++)
 mkdir -p build/fuzz
-"$compiler" -std=c++17 -O1 -g -fsanitize=fuzzer,address -Iinclude -I/usr/include/eigen3 \
-  tests/fuzz/fuzz_load_mesh.cpp src/mesh/*.cpp \
+"$compiler" -std=c++17 -O1 -g -fsanitize=fuzzer,address -Iinclude -Iplugins/mesh/include -I/usr/include/eigen3 \
+  tests/fuzz/fuzz_load_mesh.cpp plugins/mesh/src/*.cpp \
   build/release/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_load_mesh
 for format in ${formats[@]}; do
   corpus=build/fuzz/corpus_$format
