@@ -49,8 +49,8 @@
 #include "bench_support.h"
 #include "commands.h"
 #include "cubespring/constraints.h"
-#include "cubespring/experiments.h"
 #include "cubespring/integrator.h"
+#include "cubespring/validation/experiments.h"
 #include "json_output.h"
 
 namespace cubespring::app {

@@ -5,10 +5,10 @@
 
 #include <Eigen/Geometry>
 
-#include "cubespring/calculix_result.h"
-#include "cubespring/experiments.h"
 #include "cubespring/render/camera.h"
 #include "cubespring/render/image.h"
+#include "cubespring/validation/calculix_result.h"
+#include "cubespring/validation/experiments.h"
 
 namespace cubespring::app {
 

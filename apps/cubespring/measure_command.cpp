@@ -17,9 +17,9 @@
 
 #include "arguments.h"
 #include "commands.h"
-#include "cubespring/experiments.h"
-#include "cubespring/fem_comparison.h"
 #include "cubespring/static_solver.h"
+#include "cubespring/validation/experiments.h"
+#include "cubespring/validation/fem_comparison.h"
 #include "json_output.h"
 #include "number_checks.h"
 #ifdef CUBESPRING_HAS_RENDER

@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "cubespring/calculix_result.h"
-#include "cubespring/fem_comparison.h"
+#include "cubespring/validation/calculix_result.h"
+#include "cubespring/validation/fem_comparison.h"
 
 namespace cubespring {
 namespace {

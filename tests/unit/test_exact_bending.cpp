@@ -10,9 +10,9 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
-#include "cubespring/experiments.h"
 #include "cubespring/integrator.h"
 #include "cubespring/stiffness.h"
+#include "cubespring/validation/experiments.h"
 #include "test_support.h"
 
 namespace cubespring {

@@ -10,10 +10,10 @@
 #include <Eigen/Geometry>
 
 #include "cubespring/constraints.h"
-#include "cubespring/experiments.h"
 #include "cubespring/forces.h"
 #include "cubespring/lattice.h"
 #include "cubespring/static_solver.h"
+#include "cubespring/validation/experiments.h"
 #include "test_support.h"
 
 namespace cubespring {

@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 
 #include "cubespring/constraints.h"
-#include "cubespring/experiments.h"
 #include "cubespring/integrator.h"
 #include "cubespring/static_solver.h"
+#include "cubespring/validation/experiments.h"
 #include "test_support.h"
 
 namespace cubespring {

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "cubespring/experiments.h"
 #include "cubespring/static_solver.h"
+#include "cubespring/validation/experiments.h"
 #include "model/neo_hookean_cell.h"
 #include "test_support.h"
 

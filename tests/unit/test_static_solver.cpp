@@ -10,11 +10,11 @@
 #include <Eigen/Dense>
 
 #include "cubespring/constraints.h"
-#include "cubespring/experiments.h"
 #include "cubespring/forces.h"
 #include "cubespring/lattice.h"
 #include "cubespring/static_solver.h"
 #include "cubespring/stiffness.h"
+#include "cubespring/validation/experiments.h"
 
 namespace cubespring {
 namespace {

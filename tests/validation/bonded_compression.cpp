@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "calculix_beam.h"
-#include "cubespring/experiments.h"
+#include "cubespring/validation/experiments.h"
 #include "self_weight_cube.h"  // fe_volume_change
 
 namespace cubespring::validation {

@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "calculix_beam.h"
-#include "cubespring/calculix_result.h"
-#include "cubespring/experiments.h"
+#include "cubespring/validation/calculix_result.h"
+#include "cubespring/validation/experiments.h"
 #ifdef CUBESPRING_CLI_PATH
 #include <nlohmann/json.hpp>
 

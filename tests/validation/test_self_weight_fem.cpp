@@ -14,7 +14,7 @@
 
 #include <gtest/gtest.h>
 
-#include "cubespring/experiments.h"
+#include "cubespring/validation/experiments.h"
 #include "self_weight_cube.h"
 
 namespace cubespring {

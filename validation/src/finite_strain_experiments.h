@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "cubespring/constraints.h"
-#include "cubespring/experiments.h"
 #include "cubespring/static_solver.h"
+#include "cubespring/validation/experiments.h"
 
 namespace cubespring {
 

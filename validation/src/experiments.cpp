@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT
 // The paper's virtual experiments (Baudet et al. 2007, section 3) on a block of cells, measured from
 // area-weighted face-mean displacements.
-#include "cubespring/experiments.h"
+#include "cubespring/validation/experiments.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include "cubespring/static_solver.h"
 #include "cubespring/strain.h"
 #include "cubespring/voxelize.h"
-#include "validation/finite_strain_experiments.h"
+#include "finite_strain_experiments.h"
 
 namespace cubespring {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <optional>
 
-#include "cubespring/calculix_result.h"
-#include "cubespring/experiments.h"
+#include "cubespring/validation/calculix_result.h"
+#include "cubespring/validation/experiments.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
 namespace cubespring {

@@ -2,7 +2,7 @@
 // SPDX-License-Identifier: MIT
 // Finite-strain experiments (issue 24) and the neo-Hookean law's closed forms they compare with
 // (docs/model-neo-hookean.md section 2: W = G/2 (I1bar - 3) + B/2 (J - 1)^2 + W_b(J)).
-#include "validation/finite_strain_experiments.h"
+#include "finite_strain_experiments.h"
 
 #include <cmath>
 #include <limits>

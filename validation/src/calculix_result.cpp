@@ -3,7 +3,7 @@
 // CalculiX's .frd result format: CalculiX GraphiX manual, section "Result Format". Each line
 // starts with a key; " -1" lines carry a node or element number right-justified in a fixed field
 // followed by values 12 characters wide (E12.5, so a minus sign may touch the previous value).
-#include "cubespring/calculix_result.h"
+#include "cubespring/validation/calculix_result.h"
 
 #include <algorithm>
 #include <array>

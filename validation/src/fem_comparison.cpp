@@ -1,6 +1,6 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "cubespring/fem_comparison.h"
+#include "cubespring/validation/fem_comparison.h"
 
 #include <algorithm>
 #include <cmath>
