@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "cubespring/bullet/conversions.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/scene/tool_motion.h"
 #include "cubespring/voxelize.h"
@@ -16,25 +17,8 @@
 namespace cubespring::scene {
 namespace {
 
-btVector3 to_bt(const Eigen::Vector3d& v) {
-  return btVector3(static_cast<btScalar>(v.x()), static_cast<btScalar>(v.y()), static_cast<btScalar>(v.z()));
-}
-
-btTransform to_bt(const Eigen::Isometry3d& pose) {
-  const Eigen::Quaterniond q(pose.linear());
-  return btTransform(btQuaternion(static_cast<btScalar>(q.x()), static_cast<btScalar>(q.y()),
-                                  static_cast<btScalar>(q.z()), static_cast<btScalar>(q.w())),
-                     to_bt(Eigen::Vector3d(pose.translation())));
-}
-
-Eigen::Isometry3d to_eigen(const btTransform& transform) {
-  const btQuaternion q = transform.getRotation();
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = Eigen::Quaterniond(q.w(), q.x(), q.y(), q.z()).normalized().toRotationMatrix();
-  const btVector3& origin = transform.getOrigin();
-  pose.translation() = Eigen::Vector3d(origin.x(), origin.y(), origin.z());
-  return pose;
-}
+using bullet::to_bt;
+using bullet::to_eigen;
 
 std::string where(const Scene& scene, int line) {
   return line > 0 ? scene.source + ":" + std::to_string(line) + ": " : std::string();

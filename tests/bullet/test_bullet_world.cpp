@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "bullet_scene.h"
+#include "cubespring/bullet/conversions.h"
 #include "cubespring/embedding.h"
 #include "cubespring/shapes.h"
 
@@ -32,6 +33,24 @@ Material tissue(double young = 1e5, double damping = 20.0) {
 }
 
 double weight(const Model& model) { return model.total_mass() * 9.81; }
+
+// The public conversions carry a pose to Bullet and back, and Bullet's own transform of a point
+// agrees with Eigen's: the quaternion's order (x, y, z, w for Bullet, w first for Eigen) and the
+// translation survive, to btScalar's precision.
+TEST(BulletWorld, ConversionsCarryPosesAndVectorsBothWays) {
+  const double tolerance = sizeof(btScalar) == sizeof(float) ? 1e-6 : 1e-12;
+  const Eigen::Vector3d v(0.25, -1.5, 3.0);
+  EXPECT_LT((bullet::to_eigen(bullet::to_bt(v)) - v).norm(), tolerance * v.norm());
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -0.5).normalized()).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(0.1, -0.2, 0.35);
+  const btTransform transform = bullet::to_bt(pose);
+  const Eigen::Vector3d point(0.03, 0.05, -0.02);
+  EXPECT_LT((bullet::to_eigen(transform * bullet::to_bt(point)) - pose * point).norm(), 10 * tolerance);
+  const Eigen::Isometry3d back = bullet::to_eigen(transform);
+  EXPECT_LT((back.linear() - pose.linear()).norm(), 10 * tolerance);
+  EXPECT_LT((back.translation() - pose.translation()).norm(), 10 * tolerance);
+}
 
 TEST(BulletWorld, PlaneCarriesTheWeightOfABlockResting) {
   BulletScene scene;

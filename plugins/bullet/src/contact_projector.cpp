@@ -8,7 +8,7 @@
 #include <optional>
 
 #include "contact_surface.h"
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 #include "rigid_distance.h"
 #include "round_tool_contact.h"
 #include "surface_topology.h"

@@ -7,7 +7,7 @@
 
 #include <LinearMath/btConvexHullComputer.h>
 
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 
 namespace cubespring::bullet {
 

@@ -13,7 +13,7 @@
 #include <BulletCollision/CollisionShapes/btPolyhedralConvexShape.h>
 #include <BulletCollision/CollisionShapes/btTriangleCallback.h>
 
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 #include "hull_planes.h"
 #include "surface_distance.h"
 

@@ -4,7 +4,7 @@
 
 #include <LinearMath/btTransformUtil.h>
 
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 
 namespace cubespring::bullet {
 

@@ -9,7 +9,7 @@
 
 #include <Eigen/Geometry>
 
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 
 namespace cubespring::bullet {
 namespace {

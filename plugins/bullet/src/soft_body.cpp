@@ -12,7 +12,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include "contact_surface.h"
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 #include "surface_refinement.h"
 #include "surface_topology.h"
 

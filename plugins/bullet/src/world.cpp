@@ -12,7 +12,7 @@
 #include <LinearMath/btTransformUtil.h>
 
 #include "contact_projector.h"
-#include "conversions.h"
+#include "cubespring/bullet/conversions.h"
 #include "cubespring/stable_time_step.h"
 #include "instability_causes.h"
 #include "rigid_track.h"
