@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include "cubespring/model.h"
+#include "cubespring/result.h"
 #include "cubespring/state.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
@@ -81,13 +82,22 @@ struct ForceWorkspace {
   void resize(const Model& model);
 };
 
+/// Whether the state and the loads fit the model: state.positions and state.velocities with one
+/// column per node, loads.nodal_forces with one or none, a finite gravity, and the constants of
+/// the model's cell law (set Model::cell_law through LatticeDesc::law). The error names the array
+/// and both counts, as the exceptions below do: check here to get it as a Status instead.
+Status check_state_and_loads(const Model& model, const State& state, const Loads& loads = {});
+
 /// Total force on every node [N] (3 x num_nodes): springs, correction, inversion recovery,
 /// damping, gravity and nodal loads. docs/model-baudet2007.md gives the formulas. Throws
 /// std::invalid_argument when state.positions, state.velocities (with damping; without, it may
-/// be empty) or loads.nodal_forces (or empty) has not one column per node.
+/// be empty) or loads.nodal_forces (or empty) has not one column per node (a precondition the
+/// caller checks with check_state_and_loads(), like std::vector::at's index: result.h).
 void compute_forces(const Model& model, const State& state, const Loads& loads, const ForceOptions& options,
                     ForceWorkspace& workspace, Eigen::Matrix3Xd& forces);
 
+/// The energies throw std::invalid_argument, as compute_forces() does, for arrays without one
+/// column per node.
 /// Internal elastic energy [J]: springs, correction and inversion recovery.
 double elastic_energy(const Model& model, const Eigen::Matrix3Xd& positions);
 /// Elastic energy minus the work of gravity and nodal loads from the rest state [J].

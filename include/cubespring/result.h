@@ -7,23 +7,28 @@
 #include <utility>
 
 // The error contract, for every part of cubespring:
-// - Input a caller can get wrong (a value out of range, arrays that do not fit the body, a file)
-//   is refused with a message naming the argument or key, the value and what was expected: a
-//   Status or Result here, StepStatus::kInvalidInput for a step, StaticReport::message for the
-//   static solver. Nothing was read past an end or changed.
-// - StepStatus::kUnstable and kSolverFailed say what the simulation did with valid input (a node
+// - Data a caller can get wrong (a value out of range, a file, a scene's key, the settings of a
+//   step or a solve) is refused with a message naming the argument or key, the value and what
+//   was expected: a Status or Result here, StepStatus::kInvalidInput for a step,
+//   StaticReport::message for the static solver. Nothing was read past an end or changed.
+// - StepStatus::kUnstable and kSolverFailed say what the simulation did with valid data (a node
 //   too fast, CG short of its tolerance), never that the settings were wrong.
+// - A few calls that return a value have preconditions on the shape of what they are given,
+//   which the caller controls and can check first; like std::vector::at, they throw naming it
+//   rather than read past an array's end. std::invalid_argument: compute_forces(), the energies
+//   and StiffnessAssembler::assemble given arrays without one column per node
+//   (check_state_and_loads() first). std::length_error: StiffnessAssembler, max_frequency() and
+//   max_stable_time_step() for a body too large for a sparse matrix's int indices
+//   (check_stiffness_size() first). The library's own paths from data (Stepper::step,
+//   solve_static, the Bullet plugin, the scene runtime, the command line) check first and report
+//   those as a status: no file, key or flag reaches an exception.
+// - Beyond those, only std::bad_alloc crosses the API.
 // - The library's own invariants are CUBESPRING_ASSERT (src/invariant.h), checked in the dev and
 //   asan builds; no input reaches them.
-// - The exceptions that are left are listed on Status below.
 namespace cubespring {
 
 /// Outcome of an operation on outside input: success, or a message that names the value at fault,
-/// what was expected, and (where known) the file. No exceptions cross the API but std::bad_alloc;
-/// from a body too large for a sparse matrix's int indices, StiffnessAssembler's and
-/// max_stable_time_step's std::length_error; and from compute_forces() and the energies given
-/// arrays that do not fit the body (their column counts), std::invalid_argument naming them
-/// (Stepper::step reports those as a status).
+/// what was expected, and (where known) the file.
 class [[nodiscard]] Status {
  public:
   Status() = default;

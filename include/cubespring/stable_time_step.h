@@ -24,12 +24,12 @@ enum class FrequencyBound {
 /// The body's highest natural frequency omega_max [rad/s], found as `bound` says. Both bounds
 /// assemble the body's stiffness (0.3 s for 64x16x16 cells, 5 s and 1.2 GB for 64^3): find it
 /// once per body. Throws std::length_error for a body too large for the matrix's int indices
-/// (StiffnessAssembler).
+/// (StiffnessAssembler; check_stiffness_size() in stiffness.h says so first, as a Status).
 double max_frequency(const Model& model, FrequencyBound bound = FrequencyBound::kGershgorin);
 
 /// The largest time step [s] at which the explicit integrators stay stable for this body at rest:
 /// 2 / omega_max, reduced for stiffness-proportional damping. Fixed nodes are ignored (they only
-/// lower omega_max), so the limit holds for any constraints.
+/// lower omega_max), so the limit holds for any constraints. Throws as max_frequency() does.
 double max_stable_time_step(const Model& model, FrequencyBound bound = FrequencyBound::kGershgorin);
 
 /// The fraction of the rest step that stays stable in the state `positions` [m], in (0, 1]. A

@@ -10,6 +10,7 @@
 
 #include "cubespring/forces.h"
 #include "cubespring/model.h"
+#include "cubespring/result.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
 namespace cubespring {
@@ -28,6 +29,11 @@ enum class StiffnessKind {
   kPositiveSemiDefinite,
 };
 
+/// Whether the body's stiffness matrix fits the int indices of SparseMatrix (up to about 8 million
+/// nodes): an error naming the node and entry counts when it does not. StiffnessAssembler throws
+/// std::length_error with that message; check here first to get it as a Status.
+Status check_stiffness_size(const Model& model);
+
 /// Assembles stiffness_scale * K + damping_scale * K_beta into a sparsity pattern built once:
 /// K the stiffness at the given positions [N/m], K_beta its Rayleigh damping part (each spring's
 /// and cell's material stiffness times the material's beta) [N s/m]. Rows and columns are
@@ -35,12 +41,13 @@ enum class StiffnessKind {
 class StiffnessAssembler {
  public:
   /// Throws std::length_error, naming the node count, when the matrix would hold more entries
-  /// than its int indices address (about 8 million nodes); the implicit step and the static
-  /// solver report that as their failure.
+  /// than its int indices address (check_stiffness_size() says so first); the implicit step and
+  /// the static solver report that as their failure.
   explicit StiffnessAssembler(const Model& model);
 
   /// `threads` share the rows (from 1024 nodes a thread); the matrix has the same bits on any
-  /// thread count.
+  /// thread count. Throws std::invalid_argument, naming both counts, for positions without one
+  /// column per node or a model of other counts than the one the assembler was built for.
   void assemble(const Model& model, const Eigen::Matrix3Xd& positions, StiffnessKind kind, double stiffness_scale,
                 double damping_scale, SparseMatrix& matrix, int threads = 1);
 
@@ -55,6 +62,7 @@ class StiffnessAssembler {
   const SparseMatrix& pattern() const { return pattern_; }
 
  private:
+  void require_fits(const Model& model, const Eigen::Matrix3Xd& positions, const char* caller) const;
   void rebuild_pattern_if_handed_over(const Model& model);
   // The rows of nodes [begin, end): one thread's part of the matrix.
   struct NodeRows {

@@ -572,6 +572,7 @@ void compute_forces(const Model& model, const State& state, const Loads& loads, 
   std::string error = node_columns_error(model, state.positions, "state.positions");
   if (error.empty()) error = node_columns_error(model, state.velocities, "state.velocities", !options.damping);
   if (error.empty()) error = node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true);
+  if (error.empty()) error = gravity_error(loads);
   if (!error.empty()) throw std::invalid_argument("compute_forces: " + error);
   require_law_constants(model, "compute_forces");
   const NodeLoads node_loads(model, state, loads, options);

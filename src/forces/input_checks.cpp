@@ -40,12 +40,19 @@ std::string state_and_loads_error(const Model& model, const State& state, const 
                                    node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true)}) {
     if (!error.empty()) return error;
   }
-  if (!loads.gravity.allFinite()) {
-    std::ostringstream message;
-    message << "loads.gravity = (" << loads.gravity.transpose() << ") m/s^2 is not finite";
-    return message.str();
-  }
-  return {};
+  return gravity_error(loads);
+}
+
+std::string gravity_error(const Loads& loads) {
+  if (loads.gravity.allFinite()) return {};
+  std::ostringstream message;
+  message << "loads.gravity = (" << loads.gravity.transpose() << ") m/s^2 is not finite";
+  return message.str();
+}
+
+Status check_state_and_loads(const Model& model, const State& state, const Loads& loads) {
+  const std::string error = state_and_loads_error(model, state, loads);
+  return error.empty() ? Status() : Status::error(error);
 }
 
 std::string constraints_error(const Model& model, const Constraints& constraints) {

@@ -35,6 +35,9 @@ void require_law_constants(const Model& model, const char* caller);
 /// law has its constants); else what is wrong.
 std::string state_and_loads_error(const Model& model, const State& state, const Loads& loads);
 
+/// "" when loads.gravity is finite; else what it is.
+std::string gravity_error(const Loads& loads);
+
 /// "" when the constraints are empty (Constraints()) or were made for a body of this many
 /// nodes; else what is wrong.
 std::string constraints_error(const Model& model, const Constraints& constraints);

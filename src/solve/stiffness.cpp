@@ -53,17 +53,26 @@ std::vector<std::vector<int>> sorted_neighbours(const Model& model) {
   return neighbours;
 }
 
+std::size_t pattern_entries(const std::vector<std::vector<int>>& neighbours) {
+  std::size_t entries = 0;
+  for (const auto& list : neighbours) entries += 9 * list.size();
+  return entries;
+}
+
+std::string pattern_size_error(int num_nodes, std::size_t entries) {
+  if (entries <= static_cast<std::size_t>(std::numeric_limits<int>::max())) return {};
+  return "the stiffness matrix of " + std::to_string(num_nodes) + " nodes would hold " + std::to_string(entries) +
+         " entries, more than its int indices can address (at most " + std::to_string(std::numeric_limits<int>::max()) +
+         ")";
+}
+
 // A 3x3 block of zeros for each node and each of its neighbours, compressed. The rows are written
 // in place, in order: a list of triplets (16 bytes an entry) and setFromTriplets' transposed copy
 // had tripled the memory (2.9 GB and 22 s for 64^3 cells).
 void build_pattern(const std::vector<std::vector<int>>& neighbours, SparseMatrix& pattern) {
   const int num_nodes = static_cast<int>(neighbours.size());
-  std::size_t entries = 0;
-  for (const auto& list : neighbours) entries += 9 * list.size();
-  if (entries > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
-    throw std::length_error("the stiffness matrix of " + std::to_string(num_nodes) + " nodes would hold " +
-                            std::to_string(entries) + " entries, more than its int indices can address");
-  }
+  const std::size_t entries = pattern_entries(neighbours);
+  if (const std::string error = pattern_size_error(num_nodes, entries); !error.empty()) throw std::length_error(error);
   pattern.resize(3 * num_nodes, 3 * num_nodes);
   pattern.makeCompressed();
   pattern.resizeNonZeros(static_cast<Eigen::Index>(entries));
@@ -83,6 +92,11 @@ void build_pattern(const std::vector<std::vector<int>>& neighbours, SparseMatrix
 }
 
 }  // namespace
+
+Status check_stiffness_size(const Model& model) {
+  const std::string error = pattern_size_error(model.num_nodes(), pattern_entries(sorted_neighbours(model)));
+  return error.empty() ? Status() : Status::error(error);
+}
 
 StiffnessAssembler::StiffnessAssembler(const Model& model) {
   const int num_nodes = model.num_nodes();
@@ -217,6 +231,7 @@ void StiffnessAssembler::add_neo_hookean(const Model& model, const Eigen::Matrix
 
 void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                   double stiffness_scale, double damping_scale, SparseMatrix& matrix, int threads) {
+  require_fits(model, x, "StiffnessAssembler::assemble");
   rebuild_pattern_if_handed_over(model);
   if (matrix.nonZeros() != pattern_.nonZeros() || matrix.rows() != pattern_.rows()) {
     matrix = pattern_;
@@ -228,12 +243,26 @@ void StiffnessAssembler::assemble(const Model& model, const Eigen::Matrix3Xd& x,
 
 SparseMatrix StiffnessAssembler::assemble_once(const Model& model, const Eigen::Matrix3Xd& x, StiffnessKind kind,
                                                double stiffness_scale, double damping_scale) && {
+  require_fits(model, x, "StiffnessAssembler::assemble_once");
   rebuild_pattern_if_handed_over(model);
   SparseMatrix matrix;
   matrix.swap(pattern_);  // its values are zeros (swapped: Eigen 3.4's SparseMatrix has no move)
   pattern_handed_over_ = true;
   add_values(model, x, kind, stiffness_scale, damping_scale, matrix, 1);
   return matrix;
+}
+
+void StiffnessAssembler::require_fits(const Model& model, const Eigen::Matrix3Xd& x, const char* caller) const {
+  if (diagonal_position_.size() != static_cast<std::size_t>(model.num_nodes()) ||
+      spring_position_.size() != static_cast<std::size_t>(model.num_springs()) ||
+      cell_position_.size() != static_cast<std::size_t>(model.num_cells())) {
+    throw std::invalid_argument(
+        std::string(caller) + ": the assembler was built for a body of " + std::to_string(diagonal_position_.size()) +
+        " nodes, " + std::to_string(spring_position_.size()) + " springs and " + std::to_string(cell_position_.size()) +
+        " cells; this one has " + std::to_string(model.num_nodes()) + ", " + std::to_string(model.num_springs()) +
+        " and " + std::to_string(model.num_cells()));
+  }
+  require_node_columns(model, x, (std::string(caller) + ": positions").c_str());
 }
 
 void StiffnessAssembler::rebuild_pattern_if_handed_over(const Model& model) {

@@ -681,11 +681,23 @@ TEST(Integrator, RefusesInputsThatDoNotFitTheBody) {
       EXPECT_TRUE(state == c.state) << c.what;
     }
   }
+  // check_state_and_loads() gives the stepper's message as a Status, for the same cases
+  for (const Case& c : cases) {
+    if (c.stepper_body != &model || c.constraints.num_nodes() != model.num_nodes() ||
+        c.what == std::string("speed limit")) {
+      continue;  // the body, constraints and step settings are the stepper's to check
+    }
+    const Status status = check_state_and_loads(model, c.state, c.loads);
+    EXPECT_FALSE(status.ok()) << c.what;
+    EXPECT_NE(status.message().find(c.expected), std::string::npos) << c.what << ": " << status.message();
+  }
+  EXPECT_TRUE(check_state_and_loads(model, rest).ok());
   // the functions that return their result throw instead
   ForceWorkspace ws;
   Eigen::Matrix3Xd forces;
   EXPECT_THROW(compute_forces(model, no_velocities, Loads{}, ForceOptions{true, 1}, ws, forces), std::invalid_argument);
   EXPECT_THROW(compute_forces(model, rest, short_loads, ForceOptions{false, 1}, ws, forces), std::invalid_argument);
+  EXPECT_THROW(compute_forces(model, rest, nan_gravity, ForceOptions{false, 1}, ws, forces), std::invalid_argument);
   EXPECT_NO_THROW(compute_forces(model, no_velocities, Loads{}, ForceOptions{false, 1}, ws, forces));
   EXPECT_THROW((void)elastic_energy(model, other.rest_positions), std::invalid_argument);
   // and the static solver reports them, leaving the state

@@ -3,6 +3,8 @@
 // The stiffness matrix against finite differences of the forces, and the zero-energy modes.
 #include <cstring>
 #include <set>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include <gtest/gtest.h>
@@ -55,6 +57,38 @@ TEST(Stiffness, PatternHoldsTheBlocksOfSpringsAndCells) {
     }
   }
   EXPECT_EQ(found, blocks);
+}
+
+// Positions of another body, or another body, would be read past the ends of the assembler's
+// arrays: each is refused with an exception naming both counts (result.h), before anything is
+// read. A body that fits the matrix's int indices passes check_stiffness_size().
+TEST(Stiffness, RefusesPositionsAndBodiesItWasNotBuiltFor) {
+  const Model model = test::box_model({2, 2, 2}, Material{});
+  const Model other = test::box_model({3, 2, 2}, Material{});
+  EXPECT_TRUE(check_stiffness_size(model).ok());
+  StiffnessAssembler assembler(model);
+  SparseMatrix matrix;
+  const auto message_of = [](const auto& call) -> std::string {
+    try {
+      call();
+    } catch (const std::invalid_argument& refused) {
+      return refused.what();
+    }
+    return "(no exception)";
+  };
+  const std::string short_positions =
+      message_of([&] { assembler.assemble(model, other.rest_positions, StiffnessKind::kExact, 1.0, 0.0, matrix); });
+  EXPECT_NE(short_positions.find("positions has 36 columns; the body has 27 nodes"), std::string::npos)
+      << short_positions;
+  const std::string other_body =
+      message_of([&] { assembler.assemble(other, other.rest_positions, StiffnessKind::kExact, 1.0, 0.0, matrix); });
+  EXPECT_NE(other_body.find("built for a body of 27 nodes"), std::string::npos) << other_body;
+  const std::string once = message_of(
+      [&] { (void)std::move(assembler).assemble_once(model, other.rest_positions, StiffnessKind::kExact, 1.0, 0.0); });
+  EXPECT_NE(once.find("assemble_once: positions has 36 columns"), std::string::npos) << once;
+  // and the assembler still serves its own body
+  assembler.assemble(model, model.rest_positions, StiffnessKind::kExact, 1.0, 0.0, matrix);
+  EXPECT_EQ(matrix.rows(), 3 * model.num_nodes());
 }
 
 // The assembler keeps its pattern and its tension arrays between calls: a matrix assembled after
