@@ -37,8 +37,8 @@ std::string JsonFields::name_of(const std::string& key) const { return where_.em
 
 Status JsonFields::error(const std::string& key, const std::string& message) const {
   const int line = document_->line_of(child_pointer(pointer_, key));
-  const std::string place = where_.empty() ? "" : " in \"" + where_ + "\"";
-  return Status::error(source_ + ":" + std::to_string(line) + ": \"" + key + "\"" + place + " " + message);
+  const std::string place = where_.empty() ? "" : " in " + quote_for_message(where_);
+  return Status::error(source_ + ":" + std::to_string(line) + ": " + quote_for_message(key) + place + " " + message);
 }
 
 int JsonFields::line() const { return document_->line_of(pointer_); }
@@ -54,7 +54,7 @@ Status JsonFields::type_error(const std::string& key, const char* expected) cons
 
 Status JsonFields::check_keys(const std::vector<std::string>& allowed) const {
   if (!value_->is_object()) {
-    const std::string what = where_.empty() ? "the scene" : "\"" + where_ + "\"";
+    const std::string what = where_.empty() ? "the scene" : quote_for_message(where_);
     return error_here(what + " must be an object, got " + type_name(*value_));
   }
   for (const auto& [key, value] : value_->items()) {
@@ -62,9 +62,9 @@ Status JsonFields::check_keys(const std::vector<std::string>& allowed) const {
     std::string expected;
     for (const std::string& name : allowed) expected += (expected.empty() ? "" : ", ") + name;
     const int line = document_->line_of(child_pointer(pointer_, key));
-    const std::string place = where_.empty() ? "the scene" : "\"" + where_ + "\"";
-    return Status::error(source_ + ":" + std::to_string(line) + ": unknown key \"" + key + "\" in " + place +
-                         " (expected one of: " + expected + ")");
+    const std::string place = where_.empty() ? "the scene" : quote_for_message(where_);
+    return Status::error(source_ + ":" + std::to_string(line) + ": unknown key " + quote_for_message(key) + " in " +
+                         place + " (expected one of: " + expected + ")");
   }
   return {};
 }

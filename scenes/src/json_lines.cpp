@@ -20,6 +20,18 @@ struct ReadCount {
   char last = '\0';
 };
 
+// nlohmann quotes the whole token it read before the error ("last read: '...'"): for an
+// unclosed string or comment that is the rest of the file. Keep it short and printable.
+std::string shorter_last_read(const std::string& message) {
+  const std::string marker = "last read: '";
+  const std::size_t begin = message.find(marker);
+  const std::size_t end = message.rfind('\'');
+  if (begin == std::string::npos || end < begin + marker.size()) return message;
+  const std::size_t start = begin + marker.size();
+  return message.substr(0, begin) + "last read: " + quote_for_message(message.substr(start, end - start), 40) +
+         message.substr(end + 1);
+}
+
 class CountingIterator {
  public:
   using iterator_category = std::input_iterator_tag;
@@ -71,7 +83,7 @@ class LineRecorder {
     Frame& frame = stack_.back();
     if (frame.container->contains(key)) {
       error_line_ = line();
-      error_ = "duplicate key \"" + key + "\"";
+      error_ = "duplicate key " + quote_for_message(key);
       return false;
     }
     frame.key = key;
@@ -92,7 +104,7 @@ class LineRecorder {
       error_line_ = line();
     }
     const std::size_t colon = what.find(": ", at == std::string::npos ? 0 : at);
-    error_ = "JSON syntax error: " + (colon == std::string::npos ? what : what.substr(colon + 2));
+    error_ = "JSON syntax error: " + shorter_last_read(colon == std::string::npos ? what : what.substr(colon + 2));
     return false;
   }
 
@@ -158,6 +170,26 @@ class LineRecorder {
 };
 
 }  // namespace
+
+std::string quote_for_message(const std::string& text, std::size_t max_chars) {
+  std::string shown = text;
+  if (shown.size() > max_chars) {
+    const std::size_t half = max_chars / 2;
+    shown = text.substr(0, half) + "..." + text.substr(text.size() - half);
+  }
+  std::string out = "\"";
+  for (const char c : shown) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte < 0x20 || byte == 0x7f) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      out += escaped;
+    } else {
+      out += c;  // bytes from 0x80 pass: names may be UTF-8
+    }
+  }
+  return out + "\"";
+}
 
 std::string child_pointer(const std::string& parent, const std::string& key) {
   std::string escaped;

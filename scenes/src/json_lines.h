@@ -31,6 +31,11 @@ struct JsonWithLines {
 /// errors of the form "SOURCE:LINE: message".
 Result<JsonWithLines> parse_json_with_lines(const std::string& text, const std::string& source);
 
+/// `text` in double quotes for a message: control bytes escaped (\xNN), and
+/// cut in the middle to at most `max_chars` of it ("start...end"), so that a key or a value
+/// of a broken file cannot make a message longer than a line.
+std::string quote_for_message(const std::string& text, std::size_t max_chars = 60);
+
 /// `parent` + "/" + `key`, with '~' and '/' escaped as JSON pointers require.
 std::string child_pointer(const std::string& parent, const std::string& key);
 

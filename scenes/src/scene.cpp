@@ -90,12 +90,13 @@ Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSp
   std::string model = cell_model_name(organ.model);
   if (Status s = fields.string("model", model); !s) return s;
   Result<CellModel> parsed = parse_cell_model(model);
-  if (!parsed) return fields.error("model", "must be \"baudet2007\" or \"exact-bending\", got \"" + model + "\"");
+  if (!parsed)
+    return fields.error("model", "must be \"baudet2007\" or \"exact-bending\", got " + quote_for_message(model));
   organ.model = *parsed;
   std::string law = cell_law_name(organ.law);
   if (Status s = fields.string("law", law); !s) return s;
   Result<CellLaw> parsed_law = parse_cell_law(law);
-  if (!parsed_law) return fields.error("law", "must be \"neo-hookean\" or \"springs\", got \"" + law + "\"");
+  if (!parsed_law) return fields.error("law", "must be \"neo-hookean\" or \"springs\", got " + quote_for_message(law));
   organ.law = *parsed_law;
   if (fields.has("materials")) {
     Result<JsonFields> materials = fields.object("materials");
@@ -262,7 +263,8 @@ Status read_render(const JsonFields& fields, RenderSpec& render) {
   } else if (colour_map == "none") {
     render.colour_map = ColourMode::kNone;
   } else {
-    return fields.error("colour_map", "must be \"displacement\", \"strain\" or \"none\", got \"" + colour_map + "\"");
+    return fields.error("colour_map",
+                        "must be \"displacement\", \"strain\" or \"none\", got " + quote_for_message(colour_map));
   }
   if (Status s = fields.positive("colour_range", render.colour_range); !s) return s;
   return fields.positive("strain_range", render.strain_range);
@@ -329,7 +331,8 @@ Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& 
       ToolSpec tool;
       if (Status s = read_tool((*tools)[i], context, static_cast<int>(i), tool); !s) return s;
       for (const ToolSpec& other : scene.tools) {
-        if (other.name == tool.name) return (*tools)[i].error("name", "\"" + tool.name + "\" is already a tool's name");
+        if (other.name == tool.name)
+          return (*tools)[i].error("name", quote_for_message(tool.name) + " is already a tool's name");
       }
       scene.tools.push_back(tool);
     }
@@ -349,7 +352,8 @@ Status read_scene(const JsonFields& fields, const SceneContext& context, Scene& 
   } else if (integrator == "implicit-euler") {
     scene.integrator = Integrator::kImplicitEuler;
   } else {
-    return fields.error("integrator", "must be \"symplectic-euler\" or \"implicit-euler\", got \"" + integrator + "\"");
+    return fields.error("integrator",
+                        "must be \"symplectic-euler\" or \"implicit-euler\", got " + quote_for_message(integrator));
   }
   if (Status s = fields.positive("time_step", scene.time_step); !s) return s;
   if (Status s = fields.non_negative("settle_time", scene.settle_time); !s) return s;

@@ -12,6 +12,7 @@
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/scene/tool_motion.h"
 #include "cubespring/voxelize.h"
+#include "json_lines.h"
 #include "tool_shapes.h"
 
 namespace cubespring::scene {
@@ -48,9 +49,9 @@ Result<std::vector<Material>> part_materials(const Scene& scene, const Voxelizat
       parts += (parts.empty() ? "" : ", ") + part.name + " (material " + part.material_name + ")";
     }
     const auto line = scene.organ.material_lines.find(name);
-    return Status::error(where(scene, line == scene.organ.material_lines.end() ? 0 : line->second) + "\"" + name +
-                         "\" in \"organ.materials\" matches no part of " + scene.organ.mesh + " (its parts: " + parts +
-                         ")");
+    return Status::error(where(scene, line == scene.organ.material_lines.end() ? 0 : line->second) +
+                         quote_for_message(name) + " in \"organ.materials\" matches no part of " + scene.organ.mesh +
+                         " (its parts: " + parts + ")");
   }
   return materials;
 }

@@ -616,6 +616,29 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
   }
 }
 
+// A broken file's own text comes back in a message cut short and with its control bytes
+// escaped: an unclosed comment had quoted the rest of the file (found by tests/fuzz/fuzz_scene.cpp).
+TEST_F(SceneErrors, BrokenTextComesBackInAShortMessage) {
+  struct Case {
+    std::string scene;
+    std::string expected;
+  };
+  const std::string long_text(20000, 'x');
+  const std::vector<Case> cases{
+      {"{\"duration\": 1, /* " + long_text, "scene.json:1: JSON syntax error"},
+      {"{\"duration\": \"" + long_text, "scene.json:1: JSON syntax error"},
+      {"{\"" + long_text + "\": 1}", "scene.json:1: unknown key \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...xxxxxxxxxxxxx"},
+      {"{\"organ\": {\"model\": \"exact\\u0001bending\"}}", "got \"exact\\x01bending\""},
+      {"{\"organ\": {\"materials\": {\"" + long_text + "\": {}}}}", "\"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxx...xxxxxx"},
+  };
+  for (const Case& c : cases) {
+    const ToolRun run = run_scene(c.scene);
+    EXPECT_NE(run.exit_code, 0);
+    EXPECT_NE(run.out.find(c.expected), std::string::npos) << run.out.substr(0, 400);
+    EXPECT_LT(run.out.size(), 600u) << run.out.substr(0, 600);
+  }
+}
+
 TEST_F(SceneErrors, MissingOrganMeshNamesThePath) {
   const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"no_such_organ.obj\"\n  }\n}\n");
   EXPECT_NE(run.exit_code, 0);
