@@ -1,9 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // libFuzzer target: parse_scene on arbitrary text, as if it were a file in the tree's
-// data/scenes/ (so the committed meshes resolve, as they do for the demo's scenes). Beyond crashes, hangs and sanitizer faults, it stops
-// on a broken message rule (docs/scene-format.md): an error must be one or two lines naming the
-// file, and a scene that parses must hold only finite numbers. scripts/fuzz.sh builds and runs it.
+// data/scenes/ (so the committed meshes resolve, as they do for the demo's scenes). Beyond crashes, hangs and sanitizer
+// faults, it stops on a broken message rule (docs/scene-format.md): an error must be one or two lines naming the file,
+// and a scene that parses must hold only finite numbers. scripts/fuzz.sh builds and runs it.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -50,7 +50,8 @@ void check_scene(const cubespring::scene::Scene& scene) {
     check_finite("organ.materials poisson", material.poisson_ratio);
     check_finite("organ.materials density", material.density);
   }
-  for (const cubespring::scene::Box& box : scene.organ.fixed_regions) check_finite("fixed", box.lower.sum() + box.upper.sum());
+  for (const cubespring::scene::Box& box : scene.organ.fixed_regions)
+    check_finite("fixed", box.lower.sum() + box.upper.sum());
   check_finite("table.height", scene.table.height);
   check_finite("table.half_size", scene.table.half_size);
   for (const cubespring::scene::ToolSpec& tool : scene.tools) {
