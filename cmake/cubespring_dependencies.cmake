@@ -48,7 +48,7 @@ if(CUBESPRING_WITH_OSMESA)
   cubespring_require(PNG_FOUND "libpng" "libpng-dev" "CUBESPRING_WITH_OSMESA=ON (PNG frames)")
 endif()
 
-if(CUBESPRING_WITH_ASSIMP AND CUBESPRING_WITH_BULLET AND CUBESPRING_WITH_OSMESA)
+if(CUBESPRING_WITH_ASSIMP AND CUBESPRING_WITH_BULLET)
   find_package(nlohmann_json 3 QUIET)
   cubespring_require(nlohmann_json_FOUND "nlohmann_json" "nlohmann-json3-dev" "cubespring::scene (scene files)")
 endif()

@@ -31,12 +31,18 @@ if(TARGET cubespring_mesh)
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   install(DIRECTORY plugins/mesh/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
+if(TARGET cubespring_view)
+  install(TARGETS cubespring_view EXPORT cubespringTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY plugins/render/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 if(TARGET cubespring_render)
   install(TARGETS cubespring_render EXPORT cubespringTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY plugins/render/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
 if(TARGET cubespring_bullet)
   install(TARGETS cubespring_bullet EXPORT cubespringTargets
@@ -45,12 +51,18 @@ if(TARGET cubespring_bullet)
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   install(DIRECTORY plugins/bullet/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
+if(TARGET cubespring_scene_world)
+  install(TARGETS cubespring_scene_world EXPORT cubespringTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  install(DIRECTORY scenes/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endif()
 if(TARGET cubespring_scene)
   install(TARGETS cubespring_scene EXPORT cubespringTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY scenes/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 endif()
 if(TARGET cubespring_app)
   install(TARGETS cubespring_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

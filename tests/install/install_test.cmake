@@ -22,7 +22,7 @@ if(result)
   message(FATAL_ERROR "the consumer failed")
 endif()
 # the optional parts' consumers, where cubespring was built with those parts
-foreach(consumer plugin_consumer scene_consumer)
+foreach(consumer plugin_consumer scene_consumer scene_world_consumer)
   if(EXISTS "${WORK_DIR}/build/${consumer}")
     execute_process(COMMAND "${WORK_DIR}/build/${consumer}" WORKING_DIRECTORY "${WORK_DIR}/build" RESULT_VARIABLE result)
     if(result)

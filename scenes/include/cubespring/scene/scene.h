@@ -19,7 +19,7 @@
 #include "cubespring/lattice.h"
 #include "cubespring/material.h"
 #include "cubespring/render/camera.h"
-#include "cubespring/render/renderer.h"
+#include "cubespring/render/lights.h"
 #include "cubespring/result.h"
 
 namespace cubespring::scene {

@@ -11,21 +11,13 @@
 #include "cubespring/render/camera.h"
 #include "cubespring/render/colour_map.h"
 #include "cubespring/render/image.h"
+#include "cubespring/render/lights.h"
 #include "cubespring/render/wireframe.h"
 #include "cubespring/result.h"
 
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals. World z is up
 /// (the floor is a plane of constant z); image sizes and line widths are in pixels of the output.
 namespace cubespring {
-
-/// A directional light (the sun: parallel rays, no falloff).
-struct Light {
-  Eigen::Vector3d direction{0.0, 0.0, -1.0};  ///< direction the light travels, world frame [-]; non-zero
-  Eigen::Vector3f colour{1.0f, 1.0f, 1.0f};   ///< diffuse and specular intensity per channel, >= 0
-};
-
-/// A key light from above front left and a weaker, cooler fill light from the right and behind.
-std::vector<Light> default_lights();
 
 /// Whether lines hide behind the surfaces of the frame.
 enum class LineVisibility {
