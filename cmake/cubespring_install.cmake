@@ -3,16 +3,27 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS cubespring_core EXPORT cubespringTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS cubespring_validation EXPORT cubespringTargets
-  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(DIRECTORY validation/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# Each part's library, and its public headers where the part has an include folder of its own.
+function(cubespring_install_part target headers)
+  if(NOT TARGET ${target})
+    return()
+  endif()
+  install(TARGETS ${target} EXPORT cubespringTargets
+    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
+    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  if(headers)
+    install(DIRECTORY ${headers}/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endif()
+endfunction()
+cubespring_install_part(cubespring_core include)
+cubespring_install_part(cubespring_validation validation/include)
+cubespring_install_part(cubespring_mesh plugins/mesh/include)
+cubespring_install_part(cubespring_view plugins/render/include)
+cubespring_install_part(cubespring_render "")  # its headers are view's folder
+cubespring_install_part(cubespring_bullet plugins/bullet/include)
+cubespring_install_part(cubespring_scene_world scenes/include)
+cubespring_install_part(cubespring_scene "")  # its headers are scene_world's folder
 install(EXPORT cubespringTargets NAMESPACE cubespring::
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/cubespring)
 
@@ -24,46 +35,6 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/cubespringConfigVer
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfig.cmake
   ${CMAKE_CURRENT_BINARY_DIR}/cubespringConfigVersion.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/cubespring)
-if(TARGET cubespring_mesh)
-  install(TARGETS cubespring_mesh EXPORT cubespringTargets
-    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY plugins/mesh/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
-if(TARGET cubespring_view)
-  install(TARGETS cubespring_view EXPORT cubespringTargets
-    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY plugins/render/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
-if(TARGET cubespring_render)
-  install(TARGETS cubespring_render EXPORT cubespringTargets
-    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
-if(TARGET cubespring_bullet)
-  install(TARGETS cubespring_bullet EXPORT cubespringTargets
-    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY plugins/bullet/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
-if(TARGET cubespring_scene_world)
-  install(TARGETS cubespring_scene_world EXPORT cubespringTargets
-    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY scenes/include/cubespring DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
-if(TARGET cubespring_scene)
-  install(TARGETS cubespring_scene EXPORT cubespringTargets
-    ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-endif()
 if(TARGET cubespring_app)
   install(TARGETS cubespring_app RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 endif()
