@@ -31,12 +31,13 @@ flags=(-std=c++17 -O1 -g -fsanitize=fuzzer,address -Iinclude -I/usr/include/eige
 "$compiler" "${flags[@]}" -Iplugins/mesh/include tests/fuzz/fuzz_load_mesh.cpp plugins/mesh/src/*.cpp \
   "$release"/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_load_mesh &
 mesh_build=$!
-# the scene parser is compiled here, instrumented; the parts it calls come from the build folder
+# the scene parser (cubespring::scene_world) is compiled here, instrumented; the parts it calls
+# come from the build folder
 "$compiler" "${flags[@]}" -DCUBESPRING_DATA_DIR="\"$PWD/data\"" -Iscenes/include -Iscenes/src \
   -Iplugins/bullet/include -Iplugins/render/include -Iplugins/mesh/include $(pkg-config --cflags bullet) \
-  tests/fuzz/fuzz_scene.cpp scenes/src/*.cpp "$release"/plugins/bullet/libcubespring_bullet.a \
-  "$release"/plugins/render/libcubespring_render.a "$release"/plugins/mesh/libcubespring_mesh.a \
-  "$release"/src/libcubespring.a $(pkg-config --libs bullet) -lassimp -lOSMesa -lpng -fopenmp -o build/fuzz/fuzz_scene
+  tests/fuzz/fuzz_scene.cpp $(ls scenes/src/*.cpp | grep -v scene_frames) "$release"/plugins/bullet/libcubespring_bullet.a \
+  "$release"/plugins/render/libcubespring_view.a "$release"/plugins/mesh/libcubespring_mesh.a \
+  "$release"/src/libcubespring.a $(pkg-config --libs bullet) -lassimp -fopenmp -o build/fuzz/fuzz_scene
 wait "$mesh_build"
 for target in ${targets[@]}; do
   corpus=build/fuzz/corpus_$target
