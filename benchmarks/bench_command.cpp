@@ -67,6 +67,9 @@ struct Row {
   double neo_hookean1 = 0, neo_hookean_lists1 = 0;
   bool neo_hookean_on_grid = false;
   int implicit_iterations = 0;
+  // the implicit step with each preconditioner (the default, automatic, chooses one of them), 1 thread
+  double jacobi_step = 0, multigrid_step = 0;
+  int jacobi_iterations = 0, multigrid_iterations = 0;
 };
 
 // The positions of a box's nodes in the floor's order (x fastest, then y, then z), whatever
@@ -172,21 +175,41 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
     settings.integrator = Integrator::kImplicitEuler;
     settings.time_step = 1e-3;
     settings.solver_tolerance = 1e-6;
-    State state1 = start, state2 = start;
-    Stepper stepper1(model), stepper2(model);
+    State state1 = start, state2 = start, state_jacobi = start, state_multigrid = start;
+    Stepper stepper1(model), stepper2(model), stepper_jacobi(model), stepper_multigrid(model);
     StepSettings settings2 = settings;
     settings2.threads = 2;
-    long iterations = 0, steps = 0;
+    StepSettings settings_jacobi = settings;
+    settings_jacobi.preconditioner = SolverPreconditioner::kJacobi;
+    StepSettings settings_multigrid = settings;
+    settings_multigrid.preconditioner = SolverPreconditioner::kMultigrid;
+    long iterations = 0, steps = 0, iterations_jacobi = 0, steps_jacobi = 0, iterations_multigrid = 0,
+         steps_multigrid = 0;
     const std::vector<double> implicit_times = interleaved_best_times(
-        o.min_seconds, {[&] {
-                          const StepReport report = stepper1.step(model, clamp, loads, settings, state1);
-                          iterations += report.solver_iterations;
-                          ++steps;
-                        },
-                        [&] { (void)stepper2.step(model, clamp, loads, settings2, state2); }});
+        o.min_seconds,
+        {[&] {
+           const StepReport report = stepper1.step(model, clamp, loads, settings, state1);
+           iterations += report.solver_iterations;
+           ++steps;
+         },
+         [&] { (void)stepper2.step(model, clamp, loads, settings2, state2); },
+         [&] {
+           const StepReport report = stepper_jacobi.step(model, clamp, loads, settings_jacobi, state_jacobi);
+           iterations_jacobi += report.solver_iterations;
+           ++steps_jacobi;
+         },
+         [&] {
+           const StepReport report = stepper_multigrid.step(model, clamp, loads, settings_multigrid, state_multigrid);
+           iterations_multigrid += report.solver_iterations;
+           ++steps_multigrid;
+         }});
     row.implicit_step = implicit_times[0];
     row.implicit_step2 = implicit_times[1];
     row.implicit_iterations = static_cast<int>(iterations / std::max(1L, steps));
+    row.jacobi_step = implicit_times[2];
+    row.jacobi_iterations = static_cast<int>(iterations_jacobi / std::max(1L, steps_jacobi));
+    row.multigrid_step = implicit_times[3];
+    row.multigrid_iterations = static_cast<int>(iterations_multigrid / std::max(1L, steps_multigrid));
   }
   return row;
 }
@@ -235,7 +258,12 @@ int run_bench(const BenchOptions& o) {
                                 : nlohmann::json()},
            {"implicit_cg_iterations", r.implicit_iterations},
            {"implicit_wall_per_simulated_second_s",
-            r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()}});
+            r.implicit_step > 0 ? nlohmann::json(1e3 * r.implicit_step) : nlohmann::json()},
+           {"implicit_preconditioner", solver_preconditioner_name(StepSettings{}.preconditioner)},
+           {"implicit_jacobi_ms", r.jacobi_step > 0 ? nlohmann::json(1e3 * r.jacobi_step) : nlohmann::json()},
+           {"implicit_jacobi_cg_iterations", r.jacobi_iterations},
+           {"implicit_multigrid_ms", r.multigrid_step > 0 ? nlohmann::json(1e3 * r.multigrid_step) : nlohmann::json()},
+           {"implicit_multigrid_cg_iterations", r.multigrid_iterations}});
     }
     std::cout << json_text(out) << "\n";
     return 0;
@@ -246,10 +274,10 @@ int run_bench(const BenchOptions& o) {
       kBatches, o.min_seconds / kBatches);
   std::printf(
       "%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %10s %5s %10s "
-      "%10s\n",
+      "%10s %10s %5s %10s %5s\n",
       "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling", "full/bare",
       "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap", "nh 1t", "nh/exact",
-      "nh lists", "implicit", "CG it", "s/sim s", "impl 2t");
+      "nh lists", "implicit", "CG it", "s/sim s", "impl 2t", "jacobi", "J it", "multigrid", "MG it");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -266,10 +294,11 @@ int run_bench(const BenchOptions& o) {
         r.exact_bending1 / r.symplectic1, 1e3 * r.neo_hookean1, r.neo_hookean1 / r.exact_bending1,
         1e3 * r.neo_hookean_lists1);
     if (r.implicit_step > 0) {
-      std::printf(" %10.3f %5d %10.2f %10.3f\n", 1e3 * r.implicit_step, r.implicit_iterations, r.implicit_step / 1e-3,
-                  1e3 * r.implicit_step2);
+      std::printf(" %10.3f %5d %10.2f %10.3f %10.3f %5d %10.3f %5d\n", 1e3 * r.implicit_step, r.implicit_iterations,
+                  r.implicit_step / 1e-3, 1e3 * r.implicit_step2, 1e3 * r.jacobi_step, r.jacobi_iterations,
+                  1e3 * r.multigrid_step, r.multigrid_iterations);
     } else {
-      std::printf(" %10s %5s %10s %10s\n", "-", "-", "-", "-");
+      std::printf(" %10s %5s %10s %10s %10s %5s %10s %5s\n", "-", "-", "-", "-", "-", "-", "-", "-");
     }
   }
   std::printf(
@@ -284,7 +313,9 @@ int run_bench(const BenchOptions& o) {
       "nh 1t: exact-bending cells with the neo-Hookean law (the scenes' default), nh/exact its cost over exact 1t;\n"
       "nh lists: the same on the spring lists (where the grid passes do not take the body, as nh 1t);\n"
       "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
-      "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads.\n");
+      "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads. The implicit step's CG\n"
+      "preconditioner is chosen by the step (automatic: Jacobi until a solve takes over 50 iterations, then\n"
+      "the multigrid); jacobi, J it and multigrid, MG it: the same step with each, 1 thread.\n");
   return 0;
 }
 

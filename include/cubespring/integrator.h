@@ -2,8 +2,10 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -17,12 +19,42 @@
 /// Units are SI throughout the API: metres, kilograms, seconds, newtons, pascals.
 namespace cubespring {
 
+class GridMultigrid;   // src/solve/grid_multigrid.h
+class Preconditioner;  // src/solve/conjugate_gradient.h
+
 enum class Integrator {
   kSymplecticEuler,  ///< v += dt a(x, v); x += dt v. Explicit, conditionally stable.
   kVelocityVerlet,   ///< half kick, drift, half kick. Explicit, conditionally stable.
   kImplicitEuler,    ///< backward Euler linearised once per step, solved by conjugate gradients.
 };
 const char* integrator_name(Integrator integrator);
+
+/// How the implicit step's conjugate gradients are preconditioned.
+enum class SolverPreconditioner {
+  /// Jacobi until two solves in a row take more than kJacobiIterationsBeforeMultigrid iterations
+  /// or one fails (that step is then solved again with the multigrid), the multigrid from then
+  /// on: each where it is the faster, by iteration counts only, so the same steps choose the
+  /// same way on every run and thread count. The default since 2026-12-06.
+  kAutomatic,
+  /// A geometric multigrid V-cycle on the lattice's node grid (src/solve/grid_multigrid.h): the
+  /// iterations barely depend on the body's size and are 6-10 times fewer than Jacobi's, at about
+  /// 5 times the cost each (its cycle runs on one thread); its coarse levels are built on the
+  /// first step and again when the driven nodes change or the iterations double. On a clamped
+  /// beam of E = 1 MPa (32x8x8 cells): 6 iterations against 37 at dt = 1 ms and nu = 0.3 (about
+  /// the same time), 24 against 233 at 4 ms and nu = 0.45 (2.2 times faster), 70 against 735 at
+  /// 16 ms and nu = 0.49 (2.7 times faster); docs/model-baudet2007.md, section 6.
+  kMultigrid,
+  /// The matrix's diagonal (Jacobi): the cheapest iteration, shared by the threads; their number
+  /// grows with the time step, the stiffness and nu. The only preconditioner until 2026-12-06.
+  kJacobi,
+};
+/// Above this many iterations of a Jacobi-preconditioned solve, the multigrid's fewer and dearer
+/// iterations take less time (SolverPreconditioner::kAutomatic): on the beams and tissue blocks
+/// measured on one thread, Jacobi was the faster at up to 23-41 iterations and the slower from
+/// about 70 (on two threads Jacobi's iterations are shared and the cycle is not: the crossing
+/// moves higher).
+inline constexpr int kJacobiIterationsBeforeMultigrid = 50;
+const char* solver_preconditioner_name(SolverPreconditioner preconditioner);
 
 struct StepSettings {
   Integrator integrator = Integrator::kSymplecticEuler;
@@ -32,6 +64,9 @@ struct StepSettings {
   double solver_tolerance = 1e-6;    ///< implicit: CG relative residual, finite and > 0
   int solver_max_iterations = 2000;  ///< implicit: CG iteration cap, >= 1 (a residual that turns
                                      ///< NaN stops CG before it: solver-failed)
+  /// implicit: CG's preconditioner (a multigrid whose level cannot be factorised falls back to
+  /// Jacobi for that step)
+  SolverPreconditioner preconditioner = SolverPreconditioner::kAutomatic;
   /// A node faster than this is taken as a blow-up [m/s], >= 0 (infinity: none); 0 means 10 times
   /// the fastest pressure wave speed of the body's materials.
   double speed_limit = 0.0;
@@ -75,6 +110,9 @@ struct StepReport {
 class Stepper {
  public:
   explicit Stepper(const Model& model);
+  ~Stepper();
+  Stepper(Stepper&&) noexcept;
+  Stepper& operator=(Stepper&&) noexcept;
 
   StepReport step(const Model& model, const Constraints& constraints, const Loads& loads, const StepSettings& settings,
                   State& state);
@@ -90,6 +128,7 @@ class Stepper {
                            const StepSettings& settings, State& state);
   StepReport implicit_step(const Model& model, const Constraints& constraints, const Loads& loads,
                            const StepSettings& settings, State& state);
+  Preconditioner* prepare_multigrid(const Model& model, const std::vector<std::uint8_t>& driven);
   /// `fastest` [m/s] is NaN or infinite when a velocity, or (positions_checked) a position, is not
   /// finite; a failure's message says where it shows in the step's `start` state.
   StepReport check(const Model& model, const StepSettings& settings, double fastest, const State& candidate,
@@ -100,6 +139,13 @@ class Stepper {
   State candidate_;
   State half_step_end_;  // velocity Verlet's second half kick writes here (it reads candidate_)
   std::unique_ptr<StiffnessAssembler> assembler_;  // built on the first implicit step
+  std::unique_ptr<GridMultigrid> multigrid_;       // on the first multigrid-preconditioned one
+  std::vector<std::uint8_t> multigrid_fixed_;      // the driven unknowns its coarse levels were built for
+  int multigrid_iterations_ = 0;                   // CG's iterations on the first step after they were
+  bool multigrid_fresh_ = false;                   // this step built them
+  int last_solver_iterations_ = 0;                 // the last implicit step's CG iterations
+  bool multigrid_chosen_ = false;                  // kAutomatic: Jacobi's solves took too many
+  int long_jacobi_solves_ = 0;                     // kAutomatic: in a row, over the threshold
   SparseMatrix system_;
   // the body's counts when the stepper was made: its arrays and assembler hold them
   int made_for_nodes_ = 0, made_for_springs_ = 0, made_for_cells_ = 0;

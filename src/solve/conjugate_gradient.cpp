@@ -60,7 +60,8 @@ double row_times(const SparseMatrix& a, int row, const Eigen::VectorXd& v) {
 }  // namespace
 
 ConjugateGradientResult conjugate_gradient(const SparseMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                                           double tolerance, int max_iterations, int threads) {
+                                           double tolerance, int max_iterations, int threads,
+                                           Preconditioner* preconditioner) {
   const int n = static_cast<int>(a.rows());
   const int blocks = std::max(1, (n + kRowsPerBlock - 1) / kRowsPerBlock);
   Eigen::VectorXd inverse_diagonal(n), r(n), z(n), p(n), ap(n);
@@ -82,13 +83,25 @@ ConjugateGradientResult conjugate_gradient(const SparseMatrix& a, const Eigen::V
       }
     };
 
-    // r = b - A x, z = D^-1 r, p = z
+    // z = M^-1 r: Jacobi's row by row in each thread, another preconditioner in one thread
+    // between barriers (every r before it, its z before any thread reads it)
+    const auto precondition = [&] {
+      if (!preconditioner) {
+        for (int row = first_row; row < end_row; ++row) z[row] = inverse_diagonal[row] * r[row];
+        return;
+      }
+      barrier();
+      if (share == 0) preconditioner->apply(r, z);
+      barrier();
+    };
+
+    // r = b - A x, z = M^-1 r, p = z
     for (int row = first_row; row < end_row; ++row) {
-      inverse_diagonal[row] = inverse_diagonal_of(a, row);
+      if (!preconditioner) inverse_diagonal[row] = inverse_diagonal_of(a, row);
       r[row] = b[row] - row_times(a, row, x);
-      z[row] = inverse_diagonal[row] * r[row];
-      p[row] = z[row];
     }
+    precondition();
+    for (int row = first_row; row < end_row; ++row) p[row] = z[row];
     block_dots(b, b, b_b);
     block_dots(r, r, r_r);
     block_dots(r, z, r_z);
@@ -113,8 +126,8 @@ ConjugateGradientResult conjugate_gradient(const SparseMatrix& a, const Eigen::V
       for (int row = first_row; row < end_row; ++row) {
         x[row] += alpha * p[row];
         r[row] -= alpha * ap[row];
-        z[row] = inverse_diagonal[row] * r[row];
       }
+      precondition();
       block_dots(r, r, r_r);
       block_dots(r, z, r_z);
       barrier();

@@ -14,6 +14,7 @@
 #include "forces/force_passes.h"
 #include "forces/input_checks.h"
 #include "solve/conjugate_gradient.h"
+#include "solve/grid_multigrid.h"
 #include "thread_shares.h"
 
 namespace cubespring {
@@ -37,6 +38,15 @@ const char* step_status_name(StepStatus status) {
   return "unknown";
 }
 
+const char* solver_preconditioner_name(SolverPreconditioner preconditioner) {
+  switch (preconditioner) {
+    case SolverPreconditioner::kAutomatic: return "automatic";
+    case SolverPreconditioner::kMultigrid: return "multigrid";
+    case SolverPreconditioner::kJacobi: return "jacobi";
+  }
+  return "unknown";
+}
+
 double max_wave_speed(const Model& model) {
   double speed = 0.0;
   for (const Material& material : model.materials) speed = std::max(speed, pressure_wave_speed(material));
@@ -48,6 +58,10 @@ Stepper::Stepper(const Model& model)
   workspace_.resize(model);
   forces_.setZero(3, model.num_nodes());
 }
+
+Stepper::~Stepper() = default;
+Stepper::Stepper(Stepper&&) noexcept = default;
+Stepper& Stepper::operator=(Stepper&&) noexcept = default;
 
 StepReport Stepper::step(const Model& model, const Constraints& constraints, const Loads& loads,
                          const StepSettings& settings, State& state) {
@@ -181,6 +195,26 @@ StepReport Stepper::explicit_step(const Model& model, const Constraints& constra
   return report;
 }
 
+// The multigrid for this step's system_: its coarse levels (the costly part) are built again when
+// there are none, when the driven unknowns changed, or when the last solve took more than twice
+// the iterations of the first one after they were built (the matrix has moved away from the one
+// they were made of); otherwise only its finest level takes the new matrix. Null (Jacobi) when a
+// level cannot be factorised.
+Preconditioner* Stepper::prepare_multigrid(const Model& model, const std::vector<std::uint8_t>& driven) {
+  if (!multigrid_) multigrid_ = std::make_unique<GridMultigrid>(model);
+  const bool stale =
+      !multigrid_->ready() || driven != multigrid_fixed_ || last_solver_iterations_ > 2 * multigrid_iterations_;
+  multigrid_fresh_ = false;
+  if (stale) {
+    multigrid_fixed_ = driven;
+    if (!multigrid_->setup(system_, driven)) return nullptr;
+    multigrid_fresh_ = true;
+  } else if (!multigrid_->refresh(system_)) {
+    return nullptr;
+  }
+  return multigrid_.get();
+}
+
 // Backward Euler linearised at the start of the step (docs/model-baudet2007.md section 6):
 //   (M (1 + dt alpha) + dt K_beta + dt^2 K) v+ = M v + dt f(x),  x+ = x + dt v+,
 // with f the undamped force, K the PSD stiffness; driven nodes' v+ is known and eliminated.
@@ -251,9 +285,36 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
                }
              });
 
+  // automatic: Jacobi until two solves in a row take more than kJacobiIterationsBeforeMultigrid
+  // iterations (the first step from rest is often one) or one fails, the multigrid from then on
+  // (and at once for the solve that failed)
+  const bool automatic = settings.preconditioner == SolverPreconditioner::kAutomatic;
+  Preconditioner* preconditioner =
+      settings.preconditioner == SolverPreconditioner::kMultigrid || (automatic && multigrid_chosen_)
+          ? prepare_multigrid(model, driven)
+          : nullptr;
   Eigen::VectorXd& velocity = guess;  // solved in place
-  const ConjugateGradientResult solved = conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance,
-                                                            settings.solver_max_iterations, settings.threads);
+  const Eigen::VectorXd start_guess = automatic && !multigrid_chosen_ ? guess : Eigen::VectorXd();
+  ConjugateGradientResult solved = conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance,
+                                                      settings.solver_max_iterations, settings.threads, preconditioner);
+  if (automatic && !multigrid_chosen_) {
+    long_jacobi_solves_ = solved.iterations > kJacobiIterationsBeforeMultigrid ? long_jacobi_solves_ + 1 : 0;
+  }
+  if (automatic && !multigrid_chosen_ && (long_jacobi_solves_ >= 2 || !solved.converged)) {
+    multigrid_chosen_ = true;
+    if (!solved.converged) preconditioner = prepare_multigrid(model, driven);
+    if (!solved.converged && preconditioner) {
+      const int jacobi_iterations = solved.iterations;
+      velocity = start_guess;
+      solved = conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance, settings.solver_max_iterations,
+                                  settings.threads, preconditioner);
+      if (multigrid_fresh_) multigrid_iterations_ = std::max(1, solved.iterations);
+      solved.iterations += jacobi_iterations;  // every product this step took
+    }
+  } else if (multigrid_fresh_ && preconditioner) {
+    multigrid_iterations_ = std::max(1, solved.iterations);
+  }
+  last_solver_iterations_ = solved.iterations;
   StepReport report;
   report.solver_iterations = solved.iterations;
   report.solver_residual = solved.relative_residual;
