@@ -314,7 +314,7 @@ int run_bench(const BenchOptions& o) {
       "nh lists: the same on the spring lists (where the grid passes do not take the body, as nh 1t);\n"
       "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
       "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads. The implicit step's CG\n"
-      "preconditioner is chosen by the step (automatic: Jacobi until a solve takes over 50 iterations, then\n"
+      "preconditioner is chosen by the step (automatic: Jacobi until two solves take over 80 iterations, then\n"
       "the multigrid); jacobi, J it and multigrid, MG it: the same step with each, 1 thread.\n");
   return 0;
 }

@@ -49,11 +49,12 @@ enum class SolverPreconditioner {
   kJacobi,
 };
 /// Above this many iterations of a Jacobi-preconditioned solve, the multigrid's fewer and dearer
-/// iterations take less time (SolverPreconditioner::kAutomatic): on the beams and tissue blocks
-/// measured on one thread, Jacobi was the faster at up to 23-41 iterations and the slower from
-/// about 70 (on two threads Jacobi's iterations are shared and the cycle is not: the crossing
-/// moves higher).
-inline constexpr int kJacobiIterationsBeforeMultigrid = 50;
+/// iterations take less time (SolverPreconditioner::kAutomatic). A cycle costs 5-7 of Jacobi's
+/// iterations (more on larger bodies, and on two threads, which share Jacobi's iterations but not
+/// the cycle), and takes 6-10 times fewer: on one thread Jacobi was the faster at up to 42
+/// iterations on the bench's bodies (`cubespring bench`), the slower at 69 on a 32x8x8 beam and
+/// from 88 on every body measured; the threshold stays on the safe side of that.
+inline constexpr int kJacobiIterationsBeforeMultigrid = 80;
 const char* solver_preconditioner_name(SolverPreconditioner preconditioner);
 
 struct StepSettings {

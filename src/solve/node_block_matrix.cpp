@@ -35,23 +35,22 @@ bool NodeBlockMatrix::assign(const SparseMatrix& a) {
     }
     row_begin_.push_back(static_cast<int>(column_.size()));
   }
-  block_.assign(column_.size(), Eigen::Matrix3f::Zero());
+  value_.assign(9 * column_.size(), 0.0F);
   return update(a);
 }
 
 bool NodeBlockMatrix::update(const SparseMatrix& a) {
   if (static_cast<std::size_t>(a.nonZeros()) != value_target_.size() || a.rows() != 3 * nodes()) return assign(a);
-  if (block_.empty()) return invert_diagonal();
-  float* blocks = block_.front().data();  // std::vector keeps the Matrix3f's 9 floats contiguous
   const double* values = a.valuePtr();
-  for (std::size_t e = 0; e < value_target_.size(); ++e) blocks[value_target_[e]] = static_cast<float>(values[e]);
+  for (std::size_t e = 0; e < value_target_.size(); ++e)
+    value_[static_cast<std::size_t>(value_target_[e])] = static_cast<float>(values[e]);
   return invert_diagonal();
 }
 
 void NodeBlockMatrix::start(std::vector<int> row_begin, std::vector<int> columns) {
   row_begin_ = std::move(row_begin);
   column_ = std::move(columns);
-  block_.assign(column_.size(), Eigen::Matrix3f::Zero());
+  value_.assign(9 * column_.size(), 0.0F);
   value_target_.clear();
 }
 
@@ -72,7 +71,7 @@ bool NodeBlockMatrix::invert_diagonal() {
 
 Eigen::SparseMatrix<double> NodeBlockMatrix::to_sparse() const {
   std::vector<Eigen::Triplet<double, int>> entries;
-  entries.reserve(9 * block_.size());
+  entries.reserve(value_.size());
   for (int n = 0; n < nodes(); ++n) {
     for (int k = row_begin(n); k < row_begin(n + 1); ++k) {
       for (int c = 0; c < 3; ++c) {
@@ -86,7 +85,7 @@ Eigen::SparseMatrix<double> NodeBlockMatrix::to_sparse() const {
 }
 
 Eigen::Vector3d NodeBlockMatrix::row_times(int node, const double* __restrict x) const {
-  const float* __restrict values = block_.front().data();  // column-major blocks, 9 floats each
+  const float* __restrict values = value_.data();
   const int* __restrict columns = column_.data();
   double s0 = 0.0, s1 = 0.0, s2 = 0.0;  // local sums: nothing the compiler must store each block
   for (int k = row_begin(node), end = row_begin(node + 1); k < end; ++k) {

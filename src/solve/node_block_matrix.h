@@ -37,8 +37,12 @@ class NodeBlockMatrix {
   int nodes() const { return static_cast<int>(row_begin_.size()) - 1; }
   int row_begin(int node) const { return row_begin_[static_cast<std::size_t>(node)]; }
   int column(int k) const { return column_[static_cast<std::size_t>(k)]; }
-  const Eigen::Matrix3f& block(int k) const { return block_[static_cast<std::size_t>(k)]; }
-  Eigen::Matrix3f& block(int k) { return block_[static_cast<std::size_t>(k)]; }
+  Eigen::Map<const Eigen::Matrix3f> block(int k) const {
+    return Eigen::Map<const Eigen::Matrix3f>(&value_[9 * static_cast<std::size_t>(k)]);
+  }
+  Eigen::Map<Eigen::Matrix3f> block(int k) {
+    return Eigen::Map<Eigen::Matrix3f>(&value_[9 * static_cast<std::size_t>(k)]);
+  }
   /// The matrix as scalar entries, for a direct factorisation.
   Eigen::SparseMatrix<double> to_sparse() const;
 
@@ -53,9 +57,9 @@ class NodeBlockMatrix {
 
   std::vector<int> row_begin_{0};  // blocks of node n: [row_begin_[n], row_begin_[n + 1])
   std::vector<int> column_;        // each block's column node
-  std::vector<Eigen::Matrix3f> block_;
+  std::vector<float> value_;       // each block's 9 values, column-major (as Eigen's)
   std::vector<Eigen::Matrix3d> diagonal_inverse_;
-  std::vector<int> value_target_;  // assign(): where each of a's values goes, 9 k + its place in block k
+  std::vector<int> value_target_;  // assign(): where each of a's values goes in value_
   std::vector<int> scratch_;
 };
 
