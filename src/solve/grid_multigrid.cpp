@@ -109,13 +109,17 @@ bool GridMultigrid::setup(const SparseMatrix& a, const std::vector<std::uint8_t>
   ready_ = false;
   Level& finest = levels_.front();
   if (!finest.matrix.assign(a)) return false;
-  finest.free_axes.assign(finest.grid.size(), Eigen::Vector3d::Ones());
+  // the mask only where some unknown is fixed: without one, the cycle and the products skip it
+  finest.free_axes.clear();
   for (std::size_t row = 0; row < fixed.size() && row < 3 * finest.grid.size(); ++row) {
-    if (fixed[row]) finest.free_axes[row / 3][static_cast<Eigen::Index>(row % 3)] = 0.0;
+    if (!fixed[row]) continue;
+    if (finest.free_axes.empty()) finest.free_axes.assign(finest.grid.size(), Eigen::Vector3d::Ones());
+    finest.free_axes[row / 3][static_cast<Eigen::Index>(row % 3)] = 0.0;
   }
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l) {
     if (!galerkin(l)) return false;
   }
+  coarsest_.analyzePattern(levels_.back().matrix.to_sparse());  // its ordering, kept by refresh()
   ready_ = factorise_coarsest();
   return ready_;
 }
@@ -188,7 +192,7 @@ bool GridMultigrid::galerkin(std::size_t l) {
 }
 
 bool GridMultigrid::factorise_coarsest() {
-  coarsest_.compute(levels_.back().matrix.to_sparse());
+  coarsest_.factorize(levels_.back().matrix.to_sparse());
   return coarsest_.info() == Eigen::Success;
 }
 

@@ -60,6 +60,7 @@ class GridMultigrid final : public Preconditioner {
     std::vector<int> interpolation_begin, interpolation_source;
     std::vector<double> interpolation_weight;
     std::vector<Eigen::Vector3d> free_axes;  // finest level: 1 for a free unknown, 0 for a fixed one
+                                             // (empty when none is fixed)
     NodeBlockMatrix matrix;
     Eigen::VectorXd rhs, solution, residual;  // the cycle's vectors on this level
   };

@@ -289,30 +289,28 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
   // iterations (the first step from rest is often one) or one fails, the multigrid from then on
   // (and at once for the solve that failed)
   const bool automatic = settings.preconditioner == SolverPreconditioner::kAutomatic;
-  Preconditioner* preconditioner =
-      settings.preconditioner == SolverPreconditioner::kMultigrid || (automatic && multigrid_chosen_)
-          ? prepare_multigrid(model, driven)
-          : nullptr;
+  const bool with_multigrid =
+      settings.preconditioner == SolverPreconditioner::kMultigrid || (automatic && multigrid_chosen_);
+  Preconditioner* preconditioner = with_multigrid ? prepare_multigrid(model, driven) : nullptr;
   Eigen::VectorXd& velocity = guess;  // solved in place
-  const Eigen::VectorXd start_guess = automatic && !multigrid_chosen_ ? guess : Eigen::VectorXd();
-  ConjugateGradientResult solved = conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance,
-                                                      settings.solver_max_iterations, settings.threads, preconditioner);
-  if (automatic && !multigrid_chosen_) {
+  const Eigen::VectorXd start_guess = automatic && !with_multigrid ? guess : Eigen::VectorXd();
+  const auto solve = [&] {
+    const ConjugateGradientResult result =
+        conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance, settings.solver_max_iterations,
+                           settings.threads, preconditioner);
+    if (preconditioner && multigrid_fresh_) multigrid_iterations_ = std::max(1, result.iterations);
+    return result;
+  };
+  ConjugateGradientResult solved = solve();
+  if (automatic && !with_multigrid) {
     long_jacobi_solves_ = solved.iterations > kJacobiIterationsBeforeMultigrid ? long_jacobi_solves_ + 1 : 0;
-  }
-  if (automatic && !multigrid_chosen_ && (long_jacobi_solves_ >= 2 || !solved.converged)) {
-    multigrid_chosen_ = true;
-    if (!solved.converged) preconditioner = prepare_multigrid(model, driven);
-    if (!solved.converged && preconditioner) {
+    multigrid_chosen_ = long_jacobi_solves_ >= 2 || !solved.converged;
+    if (!solved.converged && (preconditioner = prepare_multigrid(model, driven)) != nullptr) {
       const int jacobi_iterations = solved.iterations;
       velocity = start_guess;
-      solved = conjugate_gradient(system_, rhs, velocity, settings.solver_tolerance, settings.solver_max_iterations,
-                                  settings.threads, preconditioner);
-      if (multigrid_fresh_) multigrid_iterations_ = std::max(1, solved.iterations);
+      solved = solve();
       solved.iterations += jacobi_iterations;  // every product this step took
     }
-  } else if (multigrid_fresh_ && preconditioner) {
-    multigrid_iterations_ = std::max(1, solved.iterations);
   }
   last_solver_iterations_ = solved.iterations;
   StepReport report;
