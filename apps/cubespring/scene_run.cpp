@@ -16,6 +16,7 @@
 #include "cubespring/render/image.h"
 #include "cubespring/scene/scene_frames.h"
 #include "cubespring/scene/scene_world.h"
+#include "frame_writer.h"
 #include "progress_bar.h"
 
 namespace cubespring::app {
@@ -27,12 +28,6 @@ const char* const kToolForceCsvHeader =
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string frame_name(int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.png", frame);
-  return name;
-}
 
 // The number of a file named as frame_name() names frames (frame_ and 4 or more digits, .png), or
 // -1 for any other name; numbers past 9 digits read as the largest int.
@@ -138,6 +133,7 @@ Result<RunOutput> run_scene(const scene::Scene& scene) {
   std::vector<ForceSeries> series(world.tools().size());
   for (std::size_t i = 0; i < series.size(); ++i) series[i].name = world.tools()[i].name;
   ProgressBar progress(frame_count, scene.duration);
+  FrameWriter writer(frames, world, folder);  // the frames are drawn beside the steps
   int next_frame = 0;
   for (int n = 0; n <= steps; ++n) {
     const double t = n * dt;
@@ -147,14 +143,13 @@ Result<RunOutput> run_scene(const scene::Scene& scene) {
       record_forces(world, t, csv, series);
     }
     while (next_frame < frame_count && frame_at[static_cast<std::size_t>(next_frame)] <= n) {
-      Result<Image> image = frames.render(world, t);
-      if (!image) return Status::error("frame " + std::to_string(next_frame) + ": " + image.message());
-      if (Status s = write_png(*image, (folder / frame_name(next_frame)).string()); !s) return s;
+      if (Status s = writer.submit(next_frame, t, world.organ().state().positions); !s) return s;
       ++next_frame;
     }
-    progress.update(next_frame, t);
+    progress.update(writer.written(), t);
   }
-  progress.finish(next_frame, steps * dt);
+  if (Status s = writer.finish(); !s) return s;
+  progress.finish(writer.written(), steps * dt);
   csv.close();
   if (!csv) return Status::error("cannot write " + output.csv);
   if (Status s = write_png(plot_forces(series), output.plot); !s) return s;

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #include "cubespring/scene/scene_frames.h"
 
+#include <string>
 #include <utility>
 
 #include "cubespring/embedding.h"
@@ -37,13 +38,18 @@ Result<SceneFrames> SceneFrames::create(const Scene& scene) {
 }
 
 Eigen::Matrix3Xd SceneFrames::organ_vertices(SceneWorld& world) {
+  return organ_vertices(world, world.organ().state().positions);
+}
+
+Eigen::Matrix3Xd SceneFrames::organ_vertices(SceneWorld& world, const Eigen::Matrix3Xd& organ_positions) {
   Eigen::Matrix3Xd vertices;
   const bullet::SoftBody& organ = world.organ();
-  embedded_positions(organ.model(), organ.embedding(), organ.state().positions, vertices);
+  embedded_positions(organ.model(), organ.embedding(), organ_positions, vertices);
   return vertices;
 }
 
-Status SceneFrames::draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& vertices) {
+Status SceneFrames::draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& organ_positions,
+                               const Eigen::Matrix3Xd& vertices) {
   const Eigen::Matrix3Xi& triangles = world.organ_mesh().triangles;
   vertex_normals(vertices, triangles, organ_normals_scratch_);
   const ColourMap map = ColourMap::viridis();
@@ -60,7 +66,7 @@ Status SceneFrames::draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& vertic
   if (spec_.colour_map == ColourMode::kStrain) {
     const bullet::SoftBody& organ = world.organ();
     const Eigen::VectorXd node_strains =
-        node_means_of_cells(organ.model(), cell_equivalent_strains(organ.model(), organ.state().positions));
+        node_means_of_cells(organ.model(), cell_equivalent_strains(organ.model(), organ_positions));
     Eigen::VectorXd vertex_strains;
     embedded_values(organ.model(), organ.embedding(), node_strains, vertex_strains);
     if (Status s = renderer_.draw_mesh_coloured(vertices, organ_normals_scratch_, triangles,
@@ -74,14 +80,22 @@ Status SceneFrames::draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& vertic
 }
 
 Result<Image> SceneFrames::render(SceneWorld& world, double t) {
+  return render(world, world.organ().state().positions, t);
+}
+
+Result<Image> SceneFrames::render(SceneWorld& world, const Eigen::Matrix3Xd& organ_positions, double t) {
+  if (organ_positions.cols() != world.organ().model().num_nodes()) {
+    return Status::error("SceneFrames::render: organ_positions has " + std::to_string(organ_positions.cols()) +
+                         " columns; the organ has " + std::to_string(world.organ().model().num_nodes()) + " nodes");
+  }
   if (Status s = renderer_.begin_frame(spec_.camera); !s) return s;
 
-  if (Status s = draw_organ(world, organ_vertices(world)); !s) return s;
+  if (Status s = draw_organ(world, organ_positions, organ_vertices(world, organ_positions)); !s) return s;
 
   if (spec_.wireframe) {
     Eigen::Matrix3Xd points;
     Eigen::Matrix2Xi segments;
-    lattice_wireframe(world.organ().model(), world.organ().state().positions, points, segments);
+    lattice_wireframe(world.organ().model(), organ_positions, points, segments);
     if (Status s = renderer_.draw_lines(points, segments, kLattice); !s) return s;
   }
 

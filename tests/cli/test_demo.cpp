@@ -429,6 +429,29 @@ TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
   EXPECT_NEAR(std::stod(fields[7]), -0.06 * force_z, 0.1 * 0.06 * force_z) << last;
 }
 
+// The frames are written on a thread beside the physics: one that cannot be written ends the run
+// with its path and the reason, and the frames before it are there.
+TEST(DemoScene, AFrameThatCannotBeWrittenEndsTheRunWithItsPath) {
+  const TempDir dir;
+  write_block_obj(dir.path() / "block.obj");
+  std::ofstream(dir.path() / "scene.json") << R"({
+    "organ": {"mesh": "block.obj", "cell_size": 0.01},
+    "tools": [{"name": "probe", "capsule": {"radius": 0.004, "length": 0.05}, "keyframes": [
+      {"time": 0.0, "position": [0, 0, 0.04]}]}],
+    "settle_time": 0, "duration": 0.4, "frames": 5, "render": {"width": 16, "height": 16}
+  })";
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(out / "frame_0002.png");  // a folder where the third frame goes
+  const ToolRun run = run_tool("run " + (dir.path() / "scene.json").string() + " --out " + out.string());
+  EXPECT_EQ(run.exit_code, 1) << run.out;
+  EXPECT_NE(run.out.find("error: " + (out / "frame_0002.png").string() + ": cannot open for writing"),
+            std::string::npos)
+      << run.out;
+  EXPECT_TRUE(cubespring::read_png((out / "frame_0000.png").string()).ok());
+  EXPECT_TRUE(cubespring::read_png((out / "frame_0001.png").string()).ok());
+  EXPECT_FALSE(fs::exists(out / "frame_0004.png")) << "no frame is drawn after one failed";
+}
+
 // colour_map "strain": the block's surface shows the bottom of the scale at rest and warms up around
 // a probe pressed into its top, not at its far corners (the unit tests check the strain values).
 TEST(DemoScene, StrainColoursShowWhereTheProbeStrainsTheTissue) {
