@@ -53,6 +53,14 @@ struct Model {
   std::vector<Eigen::Vector3i> node_grid_index;  ///< grid index of each node
   Eigen::VectorXd mass;                          ///< [kg], lumped: each cell gives 1/8 of its mass to each corner
   Eigen::VectorXd mass_damping;                  ///< Rayleigh alpha times mass [kg/s]
+  /// What resists acceleration at each node [kg], where it differs from `mass`: selective mass
+  /// scaling (add_mass_for_time_step(), mass_scaling.h) gives the nodes that limit the explicit
+  /// step inertia that does not weigh, so that the step can be longer. Gravity and mass damping
+  /// act on `mass`; the steps, the stable step and contact impulses on inertia(). Empty (the
+  /// default): `mass`.
+  Eigen::VectorXd inertial_mass;
+  /// The nodes' inertia [kg]: inertial_mass when it is set, else mass.
+  const Eigen::VectorXd& inertia() const { return inertial_mass.size() > 0 ? inertial_mass : mass; }
 
   // springs (num_springs); spring s pulls spring_nodes[s][0] and [1] together when stretched
   std::vector<std::array<int, 2>> spring_nodes;

@@ -76,7 +76,7 @@ Status read_box(const JsonFields& fields, Box& box) {
 
 Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSpec& organ) {
   if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "law", "materials",
-                                    "fixed_regions", "friction", "face_contacts", "contact_offset"});
+                                    "fixed_regions", "friction", "face_contacts", "contact_offset", "max_added_mass"});
       !s) {
     return s;
   }
@@ -121,6 +121,7 @@ Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSp
   }
   if (Status s = fields.non_negative("friction", organ.friction); !s) return s;
   if (Status s = fields.non_negative("contact_offset", organ.contact_offset); !s) return s;
+  if (Status s = fields.fraction("max_added_mass", organ.max_added_mass); !s) return s;
   return fields.boolean("face_contacts", organ.face_contacts);
 }
 

@@ -109,6 +109,7 @@ Status SceneWorld::build_organ(const Scene& scene) {
   settings.contact.friction = spec.friction;
   settings.contact.face_contacts = spec.face_contacts;
   settings.contact.offset = spec.contact_offset;
+  settings.max_added_mass = spec.max_added_mass;
   Result<std::unique_ptr<bullet::SoftBody>> body = bullet::SoftBody::create(settings);
   if (!body) return Status::error("organ: " + body.message());
   organ_ = std::move(body).value();
@@ -128,6 +129,15 @@ Status SceneWorld::build_organ(const Scene& scene) {
   summary_.fixed_nodes = organ_->constraints().num_driven();
   summary_.cell_size = voxels->cell_size.x();
   summary_.sub_step = organ_->sub_step();
+  if (const MassScaling& added = organ_->mass_scaling(); added.nodes > 0) {
+    char note[200];
+    std::snprintf(note, sizeof note,
+                  "organ.max_added_mass: %d nodes took %.1f g of inertia (%.1f%% of the organ's mass); the sub-step "
+                  "is %.3f ms, %.2fx what it was",
+                  added.nodes, 1e3 * added.added_mass, 100.0 * added.added_fraction, 1e3 * organ_->sub_step(),
+                  added.time_step_after / added.time_step_before);
+    summary_.notes.emplace_back(note);
+  }
   return {};
 }
 

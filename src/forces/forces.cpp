@@ -427,7 +427,7 @@ struct NodeLoads {
 // Returns its squared speed [m^2/s^2], NaN if a new position is not finite.
 double kick_node(const Model& model, const Eigen::Matrix3Xd& forces, const KickDrift& kick, int n, State* to) {
   const State& from = *kick.from;
-  const double rate = kick.kick / model.mass[n];
+  const double rate = kick.kick / model.inertia()[n];
   double speed_sq = 0.0;
   bool finite = true;
   for (int axis = 0; axis < 3; ++axis) {
@@ -656,7 +656,7 @@ double potential_energy(const Model& model, const Loads& loads, const Eigen::Mat
 
 double kinetic_energy(const Model& model, const State& state) {
   require_node_columns(model, state.velocities, "kinetic_energy: state.velocities");
-  return 0.5 * (state.velocities.colwise().squaredNorm().transpose().cwiseProduct(model.mass)).sum();
+  return 0.5 * (state.velocities.colwise().squaredNorm().transpose().cwiseProduct(model.inertia())).sum();
 }
 
 }  // namespace cubespring

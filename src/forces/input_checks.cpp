@@ -4,6 +4,7 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace cubespring {
 
@@ -35,6 +36,10 @@ void require_law_constants(const Model& model, const char* caller) {
 
 std::string state_and_loads_error(const Model& model, const State& state, const Loads& loads) {
   if (std::string error = law_constants_error(model); !error.empty()) return error;
+  if (model.inertial_mass.size() != 0 && model.inertial_mass.size() != model.num_nodes()) {
+    return "model.inertial_mass has " + std::to_string(model.inertial_mass.size()) + " entries; the body has " +
+           std::to_string(model.num_nodes()) + " nodes (or leave it empty)";
+  }
   for (const std::string& error : {node_columns_error(model, state.positions, "state.positions"),
                                    node_columns_error(model, state.velocities, "state.velocities"),
                                    node_columns_error(model, loads.nodal_forces, "loads.nodal_forces", true)}) {

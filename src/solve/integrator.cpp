@@ -247,7 +247,7 @@ StepReport Stepper::implicit_step(const Model& model, const Constraints& constra
              [&](int share, int shares, const auto& barrier) {
                const auto [first, end] = equal_share(num_nodes, share, shares);
                for (int n = first; n < end; ++n) {
-                 const double mass = model.mass[n];
+                 const double mass = model.inertia()[n];
                  const double mass_term = mass + dt * model.mass_damping[n];
                  for (int a = 0; a < 3; ++a) {
                    rhs[3 * n + a] = mass * state.velocities(a, n) + dt * forces_(a, n);

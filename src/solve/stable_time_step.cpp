@@ -77,9 +77,9 @@ double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::Ve
 double max_frequency(const Model& model, FrequencyBound bound) {
   const SparseMatrix stiffness = StiffnessAssembler(model).assemble_once(
       model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0);
-  const double gershgorin = gershgorin_bound(stiffness, model.mass);
+  const double gershgorin = gershgorin_bound(stiffness, model.inertia());
   if (bound == FrequencyBound::kGershgorin) return std::sqrt(gershgorin);
-  return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.mass)));
+  return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.inertia())));
 }
 
 namespace {

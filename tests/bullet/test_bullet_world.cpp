@@ -67,6 +67,46 @@ TEST(BulletWorld, PlaneCarriesTheWeightOfABlockResting) {
   EXPECT_GE(soft->state().positions.row(2).minCoeff(), -1e-12);
 }
 
+// max_added_mass: a block with a stiff core takes the longer sub-step the added inertia buys, and
+// rests on the plane carrying its weight, not its inertia; out of range, it is refused by name.
+TEST(BulletWorld, AddedMassLengthensTheSubStepAndWeighsNothing) {
+  bullet::SoftBodySettings settings = block({4, 4, 3}, kCell, tissue(2e4));
+  settings.lattice.materials.push_back(tissue(2e5));  // a core 10 times as stiff
+  settings.lattice.cell_material.assign(settings.lattice.cells.size(), 0);
+  for (std::size_t c = 0; c < settings.lattice.cells.size(); ++c) {
+    const Eigen::Vector3i& cell = settings.lattice.cells[c];
+    if (cell.x() >= 1 && cell.x() <= 2 && cell.y() >= 1 && cell.y() <= 2 && cell.z() == 1) {
+      settings.lattice.cell_material[c] = 1;
+    }
+  }
+  settings.max_added_mass = 0.1;
+  BulletScene scene;
+  btRigidBody* floor = scene.add_floor();
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  ASSERT_NE(soft, nullptr);
+  const MassScaling& added = soft->mass_scaling();
+  EXPECT_GT(added.nodes, 0);
+  EXPECT_NEAR(added.added_fraction, 0.1, 1e-9);
+  EXPECT_GT(added.time_step_after, 1.3 * added.time_step_before);
+  EXPECT_DOUBLE_EQ(soft->sub_step(), settings.time_step_safety * added.time_step_after);
+  EXPECT_DOUBLE_EQ(soft->unscaled_sub_step(), settings.time_step_safety * added.time_step_before);
+  scene.run(1.5);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  EXPECT_NEAR(scene.world().getContactWrench(floor).force.z(), -weight(soft->model()), 0.01 * weight(soft->model()));
+
+  settings.max_added_mass = 1.5;
+  const Result<std::unique_ptr<bullet::SoftBody>> refused = bullet::SoftBody::create(settings);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.message().find("max added mass 1.5"), std::string::npos) << refused.message();
+  // the implicit step is not limited by its stiffest nodes: nothing is added
+  settings.max_added_mass = 0.1;
+  settings.integrator = Integrator::kImplicitEuler;
+  const Result<std::unique_ptr<bullet::SoftBody>> implicit = bullet::SoftBody::create(settings);
+  ASSERT_TRUE(implicit.ok()) << implicit.message();
+  EXPECT_EQ((*implicit)->mass_scaling().nodes, 0);
+  EXPECT_EQ((*implicit)->model().inertial_mass.size(), 0);
+}
+
 TEST(BulletWorld, DroppedBoxComesToRestOnTheBlockCarriedByItsContactForce) {
   BulletScene scene;
   scene.add_floor();

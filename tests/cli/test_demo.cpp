@@ -623,6 +623,7 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
       {"{\"render\": {\"lights\": [{\"direction\": [0, 0, -1], \"colour\": [1, -1, 1]}]}}",
        "\"colour\" in \"render.lights[0]\" must have no negative channel"},
       {"{\"organ\": {\"contact_offset\": -0.001}}", "\"contact_offset\" in \"organ\" must be >= 0, got -0.001"},
+      {"{\"organ\": {\"max_added_mass\": 1.5}}", "\"max_added_mass\" in \"organ\" must be in [0, 1], got 1.5"},
       // numbers too large to simulate: every torque came out NaN, or the organ stopped naming loads.gravity
       {"{\"tools\": [{\"capsule\": {\"radius\": 0.0025, \"length\": 1e308}}]}",
        "\"length\" in \"tools[0].capsule\" times the scale is 1e+308 m, more than a tool's 100 m"},

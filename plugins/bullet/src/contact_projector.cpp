@@ -487,8 +487,8 @@ void ContactProjector::prepare_points(RigidTrack& track, bool count) {
       const double w = entry.weight;
       entry.share_per_mass = 0.0;
       if (!movable(node, w)) continue;
-      entry.share_per_mass = w / body_.model_.mass[node];
-      point.inverse_mass += w * w / body_.model_.mass[node];
+      entry.share_per_mass = w / body_.model_.inertia()[node];
+      point.inverse_mass += w * w / body_.model_.inertia()[node];
       point.share += w;
       body_.mark_moved(node);
     }

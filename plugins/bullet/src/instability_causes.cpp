@@ -20,6 +20,10 @@ std::string instability_causes(const Model& model, const SubStepPlan& plan, cons
   out << "; the plugin chose the sub-step of " << plan.sub_step << " s (at most " << plan.safety
       << " of the body's stable step at rest, " << plan.rest_sub_step << " s";
   if (plan.squeezed < 1.0) out << "; cells squeezed thin now need " << plan.squeezed << " of that";
+  if (plan.added_mass > 0.0) {
+    out << "; nodes took " << 100.0 * plan.added_mass
+        << "% of the body's mass as inertia to lengthen it (max_added_mass: try without)";
+  }
   out << ")";
   if (!model.has_mass_damping) {
     out << "; the tissue has no mass damping (Material::mass_damping = 0): soft tissue needs about "

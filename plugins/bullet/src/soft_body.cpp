@@ -42,6 +42,10 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   if (!(settings.time_step_safety > 0.0 && settings.time_step_safety <= 1.0)) {
     return Status::error("time step safety " + std::to_string(settings.time_step_safety) + " must be in (0, 1]");
   }
+  if (!(settings.max_added_mass >= 0.0 && settings.max_added_mass <= 1.0)) {
+    return Status::error("max added mass " + std::to_string(settings.max_added_mass) +
+                         " (a fraction of the body's mass) must be in [0, 1]");
+  }
   if (settings.integrator == Integrator::kImplicitEuler && !(settings.max_implicit_step > 0.0)) {
     return Status::error("max implicit step " + std::to_string(settings.max_implicit_step) + " s must be > 0");
   }
@@ -65,6 +69,9 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   // explicit: the stable step of the body at rest, which its contacts do not stiffen (they move
   // vertices, they add no springs)
   try {
+    if (settings.integrator != Integrator::kImplicitEuler && settings.max_added_mass > 0.0) {
+      body->mass_scaling_ = add_mass_for_time_step(body->model_, settings.max_added_mass);
+    }
     body->sub_step_ = settings.integrator == Integrator::kImplicitEuler
                           ? settings.max_implicit_step
                           : settings.time_step_safety * max_stable_time_step(body->model_);
@@ -100,6 +107,11 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->surface_topology_ =
       std::make_shared<const SurfaceTopology>(surface_topology(body->surface_positions_, body->surface_triangles_));
   return body;
+}
+
+double SoftBody::unscaled_sub_step() const {
+  if (mass_scaling_.nodes == 0) return sub_step_;
+  return std::min(sub_step_, time_step_safety_ * mass_scaling_.time_step_before);
 }
 
 void SoftBody::index_vertices_by_node() {

@@ -162,7 +162,7 @@ void World::drive_anchors(SoftBody& body, std::vector<RigidTrack>& tracks, const
         (void)body.constraints_.prescribe_position(node, target);
         continue;
       }
-      const double mass = body.model_.mass[node];
+      const double mass = body.model_.inertia()[node];
       const double stiffness = 0.25 * mass / (dt * dt);
       const double damping = 2.0 * std::sqrt(stiffness * mass);
       const Eigen::Vector3d pull = stiffness * (target - body.state_.positions.col(node)) +
@@ -193,7 +193,7 @@ void World::report_held_anchors(const SoftBody& body, std::vector<RigidTrack>& t
     if (!body.anchors_[a] || track.dynamic) continue;
     for (const int node : body.anchors_[a]->nodes) {
       const Eigen::Vector3d momentum_change =
-          body.model_.mass[node] * (body.state_.velocities.col(node) - velocities_before.col(node));
+          body.model_.inertia()[node] * (body.state_.velocities.col(node) - velocities_before.col(node));
       track.receive(dt * forces.col(node) - momentum_change, body.state_.positions.col(node), false);
     }
   }
@@ -241,8 +241,9 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     return;
   }
   // explicit sub-steps follow the body's state: a cell squeezed thin takes a shorter step than at
-  // rest (compressed_step_factor); what is left of the world step is planned again every few
-  // sub-steps, at equal sub-steps (the same ones as at rest while no cell is thin)
+  // rest (compressed_step_factor), from the step without added inertia (unscaled_sub_step); what
+  // is left of the world step is planned again every few sub-steps, at equal sub-steps (the same
+  // ones as at rest while no cell is thin)
   const bool explicit_steps = body.step_settings_.integrator != Integrator::kImplicitEuler;
   constexpr int kReplanEvery = 4;
   int remaining = std::max(1, static_cast<int>(needed));
@@ -259,7 +260,8 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     if (explicit_steps && k % kReplanEvery == 0) {
       const Clock::time_point planning = Clock::now();
       const double left = step_length - (plan_start + planned * dt);
-      const double allowed = body.sub_step_ * compressed_step_factor(body.model_, body.state_.positions);
+      const double factor = compressed_step_factor(body.model_, body.state_.positions);
+      const double allowed = factor * (factor < 1.0 ? body.unscaled_sub_step() : body.sub_step_);
       body.times_.planning += seconds_since(planning);
       const int wanted = std::max(1, static_cast<int>(std::ceil(left / allowed - 1e-9)));
       if (wanted != remaining) {
@@ -290,7 +292,9 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
       if (explicit_steps && report.status == StepStatus::kUnstable) {
         // (the step left the state as it was: the thin cells the plan saw)
         const double squeezed = compressed_step_factor(body.model_, body.state_.positions);
-        causes = instability_causes(body.model_, {dt, body.sub_step_, body.time_step_safety_, squeezed}, tracks);
+        const double rest = squeezed < 1.0 ? body.unscaled_sub_step() : body.sub_step_;
+        causes = instability_causes(
+            body.model_, {dt, rest, body.time_step_safety_, squeezed, body.mass_scaling_.added_fraction}, tracks);
       }
       body.stop_message_ =
           "soft body stopped at t = " + std::to_string(time_ + elapsed) + " s: " + report.message + causes;

@@ -26,6 +26,7 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
   const double* __restrict fy = spring_force[1];
   const double* __restrict fz = spring_force[2];
   const double* __restrict mass = k.model.mass.data();
+  const double* __restrict inertia = k.model.inertia().data();
   const double* __restrict mass_damping = k.model.mass_damping.data();
   const double* __restrict damped_velocity = k.state.velocities.data();
   const double* __restrict nodal = k.loads.nodal_forces.data();
@@ -43,7 +44,7 @@ CUBESPRING_VECTOR_CLONES double kick_nodes(const GridKick& k, const int* __restr
     const int g = kContiguous ? n + shift : point_of_node[n];
     const double spring[3] = {fx[g], fy[g], fz[g]};
     const double m = mass[n];
-    const double rate = kick / m;
+    const double rate = kick / inertia[n];
     double speed_sq = 0.0;
 #pragma GCC unroll 3
     for (int axis = 0; axis < 3; ++axis) {

@@ -49,6 +49,9 @@ struct OrganSpec {
   double friction = 0.3;                      ///< Coulomb mu between the tissue and every rigid body [-]
   bool face_contacts = true;                  ///< tools thinner than the surface's vertex spacing cannot slip through
   double contact_offset = 0.0;                ///< skin kept between the tissue and rigid surfaces [m]
+  /// The most inertia, as a fraction of the organ's mass, that the explicit sub-step may give the
+  /// nodes limiting it (a stiff tumour's) to be longer (bullet::SoftBodySettings::max_added_mass).
+  double max_added_mass = 0.0;
 };
 
 struct TableSpec {
