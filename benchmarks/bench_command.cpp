@@ -3,6 +3,7 @@
 // cubespring bench: time per step of each integrator on blocks and a voxelized sphere, beside a
 // bare spring-force pass over the same springs (the floor a full step is compared with).
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -10,6 +11,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -35,6 +37,30 @@ struct BenchOptions {
   bool implicit = true;
   int implicit_max_cells = 40000;  // implicit steps are timed up to this many cells
   bool json = false;
+  int busy = 0;  // threads spinning beside the bench: a loaded machine
+};
+
+// Threads that spin until destroyed: another program's load on the machine (--busy).
+class BusyThreads {
+ public:
+  explicit BusyThreads(int count) {
+    for (int i = 0; i < count; ++i) {
+      threads_.emplace_back([this] {
+        while (!stop_.load(std::memory_order_relaxed)) {
+        }
+      });
+    }
+  }
+  ~BusyThreads() {
+    stop_.store(true);
+    for (std::thread& thread : threads_) thread.join();
+  }
+  BusyThreads(const BusyThreads&) = delete;
+  BusyThreads& operator=(const BusyThreads&) = delete;
+
+ private:
+  std::atomic<bool> stop_{false};
+  std::vector<std::thread> threads_;
 };
 
 // The floor: one pass of linear spring forces, f = k (l - l0) d / l, over the springs grouped by
@@ -60,6 +86,7 @@ struct Row {
   std::string name;
   int cells = 0, nodes = 0, springs = 0;
   double bare = 0, grid_bare = 0, symplectic1 = 0, symplectic2 = 0, verlet1 = 0, verlet2 = 0;
+  double symplectic_adaptive = 0;                // 2 threads allowed, the step taking 1 while 1 is faster
   double implicit_step = 0, implicit_step2 = 0;  // 1 and 2 threads
   double two_bodies = 0;      // two copies of the body's 1-thread symplectic step at once, on 2 threads
   double exact_bending1 = 0;  // the exact-bending model's symplectic step, 1 thread
@@ -123,6 +150,8 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   const double neo_hookean_dt = 0.5 * max_stable_time_step(neo_hookean.value());
   ExplicitStepper symplectic1(model, clamp, loads, start, Integrator::kSymplecticEuler, 1, dt);
   ExplicitStepper symplectic2(model, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
+  ExplicitStepper symplectic_adaptive(model, clamp, loads, start, Integrator::kSymplecticEuler, 2, dt);
+  symplectic_adaptive.adapting();
   ExplicitStepper verlet1(model, clamp, loads, start, Integrator::kVelocityVerlet, 1, dt);
   ExplicitStepper verlet2(model, clamp, loads, start, Integrator::kVelocityVerlet, 2, dt);
   ExplicitStepper exact1(exact.value(), clamp, loads, start, Integrator::kSymplecticEuler, 1, exact_dt);
@@ -141,7 +170,8 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
                                              std::ref(two_bodies),
                                              std::ref(verlet2),
                                              std::ref(neo_hookean1),
-                                             std::ref(neo_hookean_lists1)};
+                                             std::ref(neo_hookean_lists1),
+                                             std::ref(symplectic_adaptive)};
   std::unique_ptr<GridSpringFloor> floor;
   if (box != nullptr) {
     const Result<CellCalibration> springs = calibrate_cell(CellModel::kBaudet2007, desc.materials[0], desc.cell_size);
@@ -160,12 +190,13 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
   row.verlet2 = times[6];
   row.neo_hookean1 = times[7];
   row.neo_hookean_lists1 = times[8];
+  row.symplectic_adaptive = times[9];
   if (floor) {
     if (floor->springs() != model.num_springs() || !std::isfinite(floor->checksum())) {
       throw std::runtime_error("the grid floor of " + name + " visited " + std::to_string(floor->springs()) +
                                " springs, the model has " + std::to_string(model.num_springs()));
     }
-    row.grid_bare = times[9];
+    row.grid_bare = times[10];
   }
 
   if (o.implicit && model.num_cells() <= o.implicit_max_cells) {
@@ -179,6 +210,7 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
     Stepper stepper1(model), stepper2(model), stepper_jacobi(model), stepper_multigrid(model);
     StepSettings settings2 = settings;
     settings2.threads = 2;
+    settings2.adapt_threads = false;  // the column measures 2 threads
     StepSettings settings_jacobi = settings;
     settings_jacobi.preconditioner = SolverPreconditioner::kJacobi;
     StepSettings settings_multigrid = settings;
@@ -217,6 +249,7 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
 int run_bench(const BenchOptions& o) {
   Material material;  // E = 1 MPa, nu = 0.3, rho = 1000
   std::vector<Row> rows;
+  const BusyThreads busy(o.busy);
   try {
     for (const Eigen::Vector3i& n : parse_size_list(o.sizes)) {
       std::ostringstream name;
@@ -244,6 +277,8 @@ int run_bench(const BenchOptions& o) {
            {"bare_spring_pass_ms", 1e3 * r.bare},
            {"grid_bare_spring_pass_ms", r.grid_bare > 0 ? nlohmann::json(1e3 * r.grid_bare) : nlohmann::json()},
            {"symplectic_euler_ms", {{"1", 1e3 * r.symplectic1}, {"2", 1e3 * r.symplectic2}}},
+           {"symplectic_euler_adaptive_threads_ms", {{"2", 1e3 * r.symplectic_adaptive}}},
+           {"busy_threads", o.busy},
            {"two_bodies_at_once_ms", 1e3 * r.two_bodies},
            {"two_thread_ceiling", 2.0 * r.symplectic1 / r.two_bodies},
            {"velocity_verlet_ms", {{"1", 1e3 * r.verlet1}, {"2", 1e3 * r.verlet2}}},
@@ -273,11 +308,12 @@ int run_bench(const BenchOptions& o) {
       ">= %.2f s each, the explicit columns together and the implicit ones together)\n",
       kBatches, o.min_seconds / kBatches);
   std::printf(
-      "%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %10s %5s %10s "
-      "%10s %10s %5s %10s %5s\n",
+      "%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %9s %7s | %10s "
+      "%5s %10s %10s %10s %5s %10s %5s\n",
       "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling", "full/bare",
       "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap", "nh 1t", "nh/exact",
-      "nh lists", "implicit", "CG it", "s/sim s", "impl 2t", "jacobi", "J it", "multigrid", "MG it");
+      "nh lists", "auto 2t", "auto/1t", "implicit", "CG it", "s/sim s", "impl 2t", "jacobi", "J it", "multigrid",
+      "MG it");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -287,12 +323,12 @@ int run_bench(const BenchOptions& o) {
     }
     std::printf(
         "%-12s %8d %9d %9d | %9.4f %9s %9.4f %9.4f %7.2f %7.2f %9.2f %9s | %9.3f %9s %9.4f %9.4f %9.4f %7.2f |"
-        " %9.4f %7.2f %9.4f |",
+        " %9.4f %7.2f %9.4f | %9.4f %7.2f |",
         r.name.c_str(), r.cells, r.nodes, r.springs, 1e3 * r.bare, grid_bare, 1e3 * r.symplectic1, 1e3 * r.symplectic2,
         r.symplectic1 / r.symplectic2, 2.0 * r.symplectic1 / r.two_bodies, r.symplectic1 / r.bare, over_grid,
         1e-9 * r.springs / r.bare, grid_rate, 1e3 * r.verlet1, 1e3 * r.verlet2, 1e3 * r.exact_bending1,
         r.exact_bending1 / r.symplectic1, 1e3 * r.neo_hookean1, r.neo_hookean1 / r.exact_bending1,
-        1e3 * r.neo_hookean_lists1);
+        1e3 * r.neo_hookean_lists1, 1e3 * r.symplectic_adaptive, r.symplectic_adaptive / r.symplectic1);
     if (r.implicit_step > 0) {
       std::printf(" %10.3f %5d %10.2f %10.3f %10.3f %5d %10.3f %5d\n", 1e3 * r.implicit_step, r.implicit_iterations,
                   r.implicit_step / 1e-3, 1e3 * r.implicit_step2, 1e3 * r.jacobi_step, r.jacobi_iterations,
@@ -315,7 +351,11 @@ int run_bench(const BenchOptions& o) {
       "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
       "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads. The implicit step's CG\n"
       "preconditioner is chosen by the step (automatic: Jacobi until two solves take over 80 iterations, then\n"
-      "the multigrid); jacobi, J it and multigrid, MG it: the same step with each, 1 thread.\n");
+      "the multigrid); jacobi, J it and multigrid, MG it: the same step with each, 1 thread.\n"
+      "auto 2t: the symplectic step allowed 2 threads as users step (StepSettings::adapt_threads: it takes 1\n"
+      "while 1 is measured faster), auto/1t its time over symp 1t; the other columns take the threads they\n"
+      "name. With --busy N, N threads spin beside the bench throughout (a loaded machine).\n");
+  if (o.busy > 0) std::printf("%d threads were spinning beside the bench.\n", o.busy);
   return 0;
 }
 
@@ -332,6 +372,9 @@ Command add_bench_command(CLI::App& app) {
       ->check(finite_positive_number())
       ->capture_default_str();
   cmd->add_option("--implicit-max-cells", options->implicit_max_cells, "time implicit steps up to this many cells")
+      ->capture_default_str();
+  cmd->add_option("--busy", options->busy, "threads spinning beside the bench throughout (a loaded machine)")
+      ->check(CLI::Range(0, 64))
       ->capture_default_str();
   cmd->add_flag("--json", options->json, "print a JSON array instead of the table");
   return [options] { return run_bench(*options); };

@@ -46,6 +46,7 @@ ExplicitStepper::ExplicitStepper(const Model& model, const Constraints& constrai
   settings_.min_grid_fill = min_grid_fill;
   settings_.integrator = integrator;
   settings_.threads = threads;
+  settings_.adapt_threads = false;
   settings_.time_step = time_step;
 }
 

@@ -35,11 +35,17 @@ std::vector<double> interleaved_best_times(double min_seconds, const std::vector
 /// outlive it. (The stable step is the caller's to find once: max_stable_time_step() assembles
 /// the body's stiffness, which costs more than thousands of steps.) min_grid_fill chooses the
 /// force passes (StepSettings::min_grid_fill: 0 the grid whenever it can, NaN the spring lists).
+/// It takes all `threads` (StepSettings::adapt_threads off, to measure them) unless adapting().
 class ExplicitStepper {
  public:
   ExplicitStepper(const Model& model, const Constraints& constraints, const Loads& loads, const State& start,
                   Integrator integrator, int threads, double time_step, double min_grid_fill = kDefaultMinGridFill);
   void operator()();
+  /// Lets the step take one thread while one is faster (StepSettings::adapt_threads), as a user's does.
+  ExplicitStepper& adapting() {
+    settings_.adapt_threads = true;
+    return *this;
+  }
 
  private:
   const Model& model_;

@@ -21,6 +21,7 @@ namespace cubespring {
 
 class GridMultigrid;   // src/solve/grid_multigrid.h
 class Preconditioner;  // src/solve/conjugate_gradient.h
+class ThreadChoice;    // src/solve/thread_choice.h
 
 enum class Integrator {
   kSymplecticEuler,  ///< v += dt a(x, v); x += dt v. Explicit, conditionally stable.
@@ -59,9 +60,15 @@ const char* solver_preconditioner_name(SolverPreconditioner preconditioner);
 
 struct StepSettings {
   Integrator integrator = Integrator::kSymplecticEuler;
-  double time_step = 1e-4;           ///< dt [s], > 0
-  int threads = 1;                   ///< threads of the force passes and the implicit step's
-                                     ///< conjugate gradients; results do not depend on it
+  double time_step = 1e-4;  ///< dt [s], > 0
+  int threads = 1;          ///< threads of the force passes and the implicit step's
+                            ///< conjugate gradients; results do not depend on it
+  /// Take one thread instead of `threads` while one is measured faster: a small body, or a core
+  /// busy with another process (a renderer, a device loop), whose barriers then wait for the
+  /// scheduler (a 32x8x8 step took 200x as long on 2 threads as on 1 beside one busy process).
+  /// The steps are timed and the other count is tried again now and then (src/solve/thread_choice.h).
+  /// Results do not depend on it; StepReport::threads says what a step took.
+  bool adapt_threads = true;
   double solver_tolerance = 1e-6;    ///< implicit: CG relative residual, finite and > 0
   int solver_max_iterations = 2000;  ///< implicit: CG iteration cap, >= 1 (a residual that turns
                                      ///< NaN stops CG before it: solver-failed)
@@ -99,6 +106,7 @@ struct StepReport {
   std::string message;         ///< what went wrong, with figures; empty when ok
   int solver_iterations = 0;   ///< implicit: CG iterations (products with the matrix)
   double solver_residual = 0;  ///< implicit: CG relative residual reached (of its updated residual)
+  int threads = 1;             ///< threads the step took (StepSettings::adapt_threads)
   bool ok() const { return status == StepStatus::kOk; }
 };
 
@@ -141,6 +149,7 @@ class Stepper {
   State half_step_end_;  // velocity Verlet's second half kick writes here (it reads candidate_)
   std::unique_ptr<StiffnessAssembler> assembler_;  // built on the first implicit step
   std::unique_ptr<GridMultigrid> multigrid_;       // on the first multigrid-preconditioned one
+  std::unique_ptr<ThreadChoice> thread_choice_;    // StepSettings::adapt_threads
   std::vector<std::uint8_t> multigrid_fixed_;      // the driven unknowns its coarse levels were built for
   int multigrid_iterations_ = 0;                   // CG's iterations on the first step after they were
   bool multigrid_fresh_ = false;                   // this step built them

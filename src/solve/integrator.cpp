@@ -3,6 +3,7 @@
 #include "cubespring/integrator.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -15,6 +16,7 @@
 #include "forces/input_checks.h"
 #include "solve/conjugate_gradient.h"
 #include "solve/grid_multigrid.h"
+#include "solve/thread_choice.h"
 #include "thread_shares.h"
 
 namespace cubespring {
@@ -55,6 +57,7 @@ double max_wave_speed(const Model& model) {
 
 Stepper::Stepper(const Model& model)
     : made_for_nodes_(model.num_nodes()), made_for_springs_(model.num_springs()), made_for_cells_(model.num_cells()) {
+  thread_choice_ = std::make_unique<ThreadChoice>();
   workspace_.resize(model);
   forces_.setZero(3, model.num_nodes());
 }
@@ -95,9 +98,18 @@ StepReport Stepper::step(const Model& model, const Constraints& constraints, con
     invalid = message.str();
   }
   if (!invalid.empty()) return {StepStatus::kInvalidInput, invalid};
-  if (settings.integrator == Integrator::kImplicitEuler)
-    return implicit_step(model, constraints, loads, settings, state);
-  return explicit_step(model, constraints, loads, settings, state);
+  StepSettings taken = settings;
+  if (settings.adapt_threads) taken.threads = thread_choice_->threads(settings.threads);
+  const auto start = std::chrono::steady_clock::now();
+  StepReport report = settings.integrator == Integrator::kImplicitEuler
+                          ? implicit_step(model, constraints, loads, taken, state)
+                          : explicit_step(model, constraints, loads, taken, state);
+  if (settings.adapt_threads) {
+    thread_choice_->record(taken.threads,
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  report.threads = std::max(1, taken.threads);
+  return report;
 }
 
 namespace {

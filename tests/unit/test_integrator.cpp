@@ -326,6 +326,7 @@ TEST(Integrator, SameRunTwiceIsBitIdenticalOnOneAndTwoThreads) {
       StepSettings settings;
       settings.integrator = integrator;
       settings.threads = threads;
+      settings.adapt_threads = false;  // every step on the threads named, for the comparison
       settings.time_step = integrator == Integrator::kImplicitEuler ? 1e-3 : 0.5 * max_stable_time_step(model);
       Stepper stepper(model);
       for (int i = 0; i < 30; ++i) {
@@ -431,6 +432,7 @@ void expect_step_is_forces_then_kicks(Integrator integrator, const Model& model,
   settings.min_grid_fill = min_grid_fill;
   settings.integrator = integrator;
   settings.threads = threads;
+  settings.adapt_threads = false;  // the threads named, on every step
   settings.time_step = dt;
   State stepped = start;
   Stepper stepper(model);
