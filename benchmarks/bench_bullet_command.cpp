@@ -221,6 +221,7 @@ Row run_cubespring(const Beam& beam, CellModel cell_model, bool implicit, int th
   row.engine = implicit ? "cubespring implicit" : "cubespring explicit";
   StepSettings settings;
   settings.threads = threads;
+  settings.adapt_threads = false;  // the row takes the threads it names
   row.threads = threads;
   int sub_steps = 1;
   long solver_iterations = 0, steps = 0;
