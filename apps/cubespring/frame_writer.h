@@ -7,9 +7,11 @@
 
 #include <atomic>
 #include <condition_variable>
+#include <cstddef>
 #include <deque>
 #include <filesystem>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include <Eigen/Core>

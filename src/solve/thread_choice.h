@@ -25,11 +25,11 @@ class ThreadChoice {
 
  private:
   int allowed_ = 1;
-  int current_ = 1;         // the count taken between probes
+  int current_ = 1;          // the count taken between probes
   double mean_[2] = {0, 0};  // the mean step time on 1 thread and on allowed_ threads [s]; 0: unknown
-  int steps_ = 0;           // steps recorded since allowed_ was set
-  int since_probe_ = 0;     // steps on current_ since the last probe
-  bool probe_now_ = false;  // the current count just slowed past the other's time: measure it at once
+  int steps_ = 0;            // steps recorded since allowed_ was set
+  int since_probe_ = 0;      // steps on current_ since the last probe
+  bool probe_now_ = false;   // the current count just slowed past the other's time: measure it at once
 };
 
 }  // namespace cubespring
