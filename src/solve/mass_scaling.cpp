@@ -9,24 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "cubespring/stable_time_step.h"
-#include "cubespring/stiffness.h"
+#include "solve/gershgorin.h"
 
 namespace cubespring {
 namespace {
-
-// Each node's largest row sum of |K_ij| over its three rows [N/m]: its Gershgorin bound times its mass.
-Eigen::VectorXd node_row_sums(const Model& model) {
-  const SparseMatrix stiffness = StiffnessAssembler(model).assemble_once(
-      model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0);
-  Eigen::VectorXd sums = Eigen::VectorXd::Zero(model.num_nodes());
-  for (int row = 0; row < stiffness.rows(); ++row) {
-    double sum = 0.0;
-    for (SparseMatrix::InnerIterator it(stiffness, row); it; ++it) sum += std::abs(it.value());
-    sums[row / 3] = std::max(sums[row / 3], sum);
-  }
-  return sums;
-}
 
 // The lowest bound lambda [1/s^2] whose inertia, sum over nodes of max(0, r_n / lambda - m_n),
 // is at most `budget` [kg]. With the nodes in falling order of r_n / m_n, a lambda between the
@@ -56,12 +42,17 @@ MassScaling add_mass_for_time_step(Model& model, double max_added_fraction) {
                                 std::to_string(max_added_fraction) + " must be in [0, 1]");
   }
   model.inertial_mass.resize(0);
+  // one assembly gives the bound before, the target and the bound after (max_stable_time_step()'s
+  // Gershgorin bound, from the same row sums)
+  const Eigen::VectorXd row_sums = node_row_sums(model);
+  const auto stable_step = [&](const Eigen::VectorXd& inertia) {
+    return stable_step_for_frequency(model, std::sqrt(gershgorin_bound(row_sums, inertia)));
+  };
   MassScaling scaling;
-  scaling.time_step_before = max_stable_time_step(model);
+  scaling.time_step_before = stable_step(model.mass);
   scaling.time_step_after = scaling.time_step_before;
   if (max_added_fraction == 0.0 || model.num_nodes() == 0) return scaling;
 
-  const Eigen::VectorXd row_sums = node_row_sums(model);
   const double lambda = lowest_affordable_bound(row_sums, model.mass, max_added_fraction * model.total_mass());
   Eigen::VectorXd inertia = model.mass;
   for (int n = 0; n < model.num_nodes(); ++n) {
@@ -75,7 +66,7 @@ MassScaling add_mass_for_time_step(Model& model, double max_added_fraction) {
   if (scaling.nodes == 0) return scaling;
   model.inertial_mass = std::move(inertia);
   scaling.added_fraction = scaling.added_mass / model.total_mass();
-  scaling.time_step_after = max_stable_time_step(model);
+  scaling.time_step_after = stable_step(model.inertial_mass);
   return scaling;
 }
 

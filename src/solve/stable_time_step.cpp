@@ -11,19 +11,24 @@
 
 #include "cubespring/stiffness.h"
 #include "model/cell_geometry.h"
+#include "solve/gershgorin.h"
 
 namespace cubespring {
 namespace {
 
-// max over rows of (1/m) sum_j |K_ij| >= every eigenvalue of M^-1 K
-double gershgorin_bound(const SparseMatrix& stiffness, const Eigen::VectorXd& mass) {
-  double bound = 0.0;
+SparseMatrix rest_stiffness(const Model& model) {
+  return StiffnessAssembler(model).assemble_once(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0,
+                                                 0.0);
+}
+
+Eigen::VectorXd node_row_sums(const SparseMatrix& stiffness) {
+  Eigen::VectorXd sums = Eigen::VectorXd::Zero(stiffness.rows() / 3);
   for (int row = 0; row < stiffness.rows(); ++row) {
     double sum = 0.0;
     for (SparseMatrix::InnerIterator it(stiffness, row); it; ++it) sum += std::abs(it.value());
-    bound = std::max(bound, sum / mass[row / 3]);
+    sums[row / 3] = std::max(sums[row / 3], sum);
   }
-  return bound;
+  return sums;
 }
 
 // Largest eigenvalue of A = M^-1/2 K M^-1/2 by Lanczos without reorthogonalisation (only the
@@ -74,10 +79,25 @@ double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::Ve
 
 }  // namespace
 
+Eigen::VectorXd node_row_sums(const Model& model) { return node_row_sums(rest_stiffness(model)); }
+
+double gershgorin_bound(const Eigen::VectorXd& row_sums, const Eigen::VectorXd& inertia) {
+  double bound = 0.0;
+  for (Eigen::Index n = 0; n < row_sums.size(); ++n) bound = std::max(bound, row_sums[n] / inertia[n]);
+  return bound;
+}
+
+double stable_step_for_frequency(const Model& model, double omega) {
+  double beta = 0.0;
+  for (const Material& material : model.materials) beta = std::max(beta, material.stiffness_damping);
+  // with damping ratio zeta = beta omega / 2 the limit is 2 / omega (sqrt(1 + zeta^2) - zeta)
+  const double zeta = 0.5 * beta * omega;
+  return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta);
+}
+
 double max_frequency(const Model& model, FrequencyBound bound) {
-  const SparseMatrix stiffness = StiffnessAssembler(model).assemble_once(
-      model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0, 0.0);
-  const double gershgorin = gershgorin_bound(stiffness, model.inertia());
+  const SparseMatrix stiffness = rest_stiffness(model);
+  const double gershgorin = gershgorin_bound(node_row_sums(stiffness), model.inertia());
   if (bound == FrequencyBound::kGershgorin) return std::sqrt(gershgorin);
   return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.inertia())));
 }
@@ -137,12 +157,7 @@ double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positi
 }
 
 double max_stable_time_step(const Model& model, FrequencyBound bound) {
-  double beta = 0.0;
-  for (const Material& material : model.materials) beta = std::max(beta, material.stiffness_damping);
-  const double omega = max_frequency(model, bound);
-  // with damping ratio zeta = beta omega / 2 the limit is 2 / omega (sqrt(1 + zeta^2) - zeta)
-  const double zeta = 0.5 * beta * omega;
-  return 2.0 / omega * (std::sqrt(1.0 + zeta * zeta) - zeta);
+  return stable_step_for_frequency(model, max_frequency(model, bound));
 }
 
 }  // namespace cubespring

@@ -72,9 +72,11 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
     if (settings.integrator != Integrator::kImplicitEuler && settings.max_added_mass > 0.0) {
       body->mass_scaling_ = add_mass_for_time_step(body->model_, settings.max_added_mass);
     }
-    body->sub_step_ = settings.integrator == Integrator::kImplicitEuler
-                          ? settings.max_implicit_step
-                          : settings.time_step_safety * max_stable_time_step(body->model_);
+    // the scaling found the stable step with its inertia (from the same assembly)
+    const bool scaled = settings.integrator != Integrator::kImplicitEuler && settings.max_added_mass > 0.0;
+    body->sub_step_ = settings.integrator == Integrator::kImplicitEuler ? settings.max_implicit_step
+                      : scaled ? settings.time_step_safety * body->mass_scaling_.time_step_after
+                               : settings.time_step_safety * max_stable_time_step(body->model_);
   } catch (const std::length_error& too_large) {
     return Status::error(too_large.what());
   }
