@@ -35,6 +35,7 @@ struct BenchRenderOptions {
   int frames = 10;     // timed per picture size
   double seconds = 0;  // simulated for the physics figure [s]; 0: the whole story
   std::string sizes = "640x360;1280x720";
+  int threads = 1;  // the organ's force passes (as `run` steps it: 1)
   bool json = false;
 };
 
@@ -125,6 +126,10 @@ int run(const BenchRenderOptions& o) {
     return 1;
   }
   scene::SceneWorld& world = **built;
+  if (Status threads = world.organ().set_threads(o.threads); !threads) {
+    std::cerr << "error: --threads: " << threads.message() << "\n";
+    return 2;
+  }
   const Eigen::Matrix3Xd rest = scene::SceneFrames::organ_vertices(world);
 
   // the story, or its first seconds, as `run` plays it
@@ -172,6 +177,7 @@ int run(const BenchRenderOptions& o) {
     out["physics"] = {{"simulated_seconds", simulated},
                       {"wall_seconds", physics_wall},
                       {"real_time_factor", simulated / physics_wall},
+                      {"threads", o.threads},
                       {"sub_steps", parts.sub_steps},
                       {"elastic_seconds", parts.elastic},
                       {"surface_seconds", parts.surface},
@@ -194,8 +200,8 @@ int run(const BenchRenderOptions& o) {
   }
   std::printf("%s: %d cells, %d nodes, sub-step %.3g ms; %s\n", scene.source.c_str(), organ.cells, organ.nodes,
               1e3 * organ.sub_step, cpu_name().c_str());
-  std::printf("physics: %.2f simulated s in %.2f wall s: %.2fx real time\n", simulated, physics_wall,
-              simulated / physics_wall);
+  std::printf("physics: %.2f simulated s in %.2f wall s: %.2fx real time on %d thread%s\n", simulated, physics_wall,
+              simulated / physics_wall, o.threads, o.threads == 1 ? "" : "s");
   std::printf(
       "  %ld sub-steps: elastic %.0f%%, surface %.0f%%, contact %.0f%%, planning %.0f%%, other %.0f%% "
       "(contact and surface: %.0f%% of the sub-steps)\n",
@@ -228,6 +234,11 @@ Command add_bench_render_command(CLI::App& app) {
                   "whole story, after it settles)")
       ->check(finite_positive_number());
   cmd->add_option("--sizes", options->sizes, "picture sizes WIDTHxHEIGHT;...")->capture_default_str();
+  cmd->add_option("--threads", options->threads,
+                  "threads of the organ's force passes during the physics figure (after settling; the "
+                  "results do not depend on it)")
+      ->check(CLI::Range(1, bullet::SoftBody::kMaxThreads))
+      ->capture_default_str();
   cmd->add_flag("--json", options->json, "print one JSON object instead of the table");
   return [options] { return run(*options); };
 }

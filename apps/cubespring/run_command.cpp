@@ -10,6 +10,7 @@
 #include <string>
 
 #include "commands.h"
+#include "cubespring/bullet/soft_body.h"
 #include "default_scene.h"
 #include "scene_run.h"
 
@@ -22,6 +23,7 @@ struct RunCommandOptions {
   std::string out;    // empty: the scene's
   int width = 0;      // 0: the scene's
   int height = 0;
+  int threads = 1;  // the organ's force passes
 };
 
 int run(const RunCommandOptions& options) {
@@ -37,7 +39,7 @@ int run(const RunCommandOptions& options) {
   if (options.width > 0) scene.render.width = options.width;
   if (options.height > 0) scene.render.height = options.height;
 
-  Result<RunOutput> output = run_scene(scene);
+  Result<RunOutput> output = run_scene(scene, options.threads);
   if (!output) {
     std::cerr << "error: " << output.message() << "\n";
     return 1;
@@ -66,6 +68,10 @@ Command add_run_command(CLI::App& app) {
   cmd->add_option("--out", options->out, "output folder (default: the scene's, cubespring-demo-output)");
   cmd->add_option("--width", options->width, "frame width [pixels]")->check(CLI::Range(1, 16384));
   cmd->add_option("--height", options->height, "frame height [pixels]")->check(CLI::Range(1, 16384));
+  cmd->add_option("--threads", options->threads,
+                  "threads of the organ's force passes; the frames and forces do not depend on it")
+      ->check(CLI::Range(1, bullet::SoftBody::kMaxThreads))
+      ->capture_default_str();
   return [options] { return run(*options); };
 }
 

@@ -99,10 +99,11 @@ void record_forces(scene::SceneWorld& world, double t, std::ostream& csv, std::v
 
 }  // namespace
 
-Result<RunOutput> run_scene(const scene::Scene& scene) {
+Result<RunOutput> run_scene(const scene::Scene& scene, int threads) {
   Result<std::unique_ptr<scene::SceneWorld>> built = scene::SceneWorld::create(scene);
   if (!built) return built.status();
   scene::SceneWorld& world = **built;
+  if (Status chosen = world.organ().set_threads(threads); !chosen) return chosen;
   Result<scene::SceneFrames> made = scene::SceneFrames::create(scene);
   if (!made) return made.status();
   scene::SceneFrames& frames = *made;

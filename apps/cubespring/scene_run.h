@@ -19,9 +19,10 @@ struct RunOutput {
   std::string plot;  ///< tool_force.png
 };
 
-/// Runs the scene; progress and a summary of the organ go to stderr. Errors name what failed
-/// (a mesh, the output folder, an unstable organ and when).
-Result<RunOutput> run_scene(const scene::Scene& scene);
+/// Runs the scene, the organ's force passes on `threads` threads (its results do not depend on
+/// them); progress and a summary of the organ go to stderr. Errors name what failed (a mesh, the
+/// output folder, an unstable organ and when).
+Result<RunOutput> run_scene(const scene::Scene& scene, int threads = 1);
 
 /// The header of tool_forces.csv (docs/scene-format.md).
 extern const char* const kToolForceCsvHeader;

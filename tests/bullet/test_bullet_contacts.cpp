@@ -14,6 +14,7 @@
 
 #include "bullet_scene.h"
 #include "cubespring/forces.h"
+#include "cubespring/material.h"
 
 namespace cubespring {
 namespace {
@@ -225,6 +226,61 @@ TEST(BulletContacts, FrictionSlidesAboveTheCoulombAngle) {
               slide.acceleration, coulomb);
   EXPECT_GT(slide.distance, 5 * kCell);
   EXPECT_NEAR(slide.acceleration, coulomb, 0.1 * coulomb);
+}
+
+// A soft block standing on a floor tilted by theta (gravity tilted; the floor's friction mu): the
+// mean of its nodes' x, sampled every step over `seconds` after `settle` s at tan = 0.8 mu, the
+// floor then tilted to tan(theta).
+Eigen::VectorXd soft_block_path(double tan_theta, double friction, const Material& material, double settle,
+                                double seconds) {
+  const auto gravity = [](double tan) {
+    const double theta = std::atan(tan);
+    return btVector3(static_cast<btScalar>(9.81 * std::sin(theta)), 0, static_cast<btScalar>(-9.81 * std::cos(theta)));
+  };
+  BulletScene scene;
+  scene.world().setGravity(gravity(0.8 * friction));
+  scene.add_floor();
+  bullet::SoftBodySettings settings = block({4, 4, 4}, kCell, material);
+  settings.lattice.model = CellModel::kExactBending;
+  settings.contact.friction = friction;
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  EXPECT_NE(soft, nullptr);
+  if (soft == nullptr) return {};
+  scene.run(settle);
+  scene.world().setGravity(gravity(tan_theta));
+  const double step = 1.0 / 60.0;
+  Eigen::VectorXd path(static_cast<int>(seconds / step + 0.5) + 1);
+  path(0) = soft->state().positions.row(0).mean();
+  for (int i = 1; i < path.size(); ++i) {
+    scene.run(step);
+    path(i) = soft->state().positions.row(0).mean();
+  }
+  EXPECT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  return path;
+}
+
+// Above the angle every node on the floor slides, and the block's centre of mass accelerates as a
+// block on a rigid incline does, g (sin - mu cos) (no mass damping, which would brake it).
+TEST(BulletContacts, FrictionLetsASoftBlockSlideAboveTheCoulombAngle) {
+  const double mu = 0.5;
+  const double tan_theta = 1.25 * mu;
+  const double theta = std::atan(tan_theta);
+  const double coulomb = 9.81 * (std::sin(theta) - mu * std::cos(theta));
+  Material material = soft_tissue(1e4);
+  material.mass_damping = 0.0;
+  material.stiffness_damping = 0.005;
+  const double seconds = 0.5;
+  const Eigen::VectorXd path = soft_block_path(tan_theta, mu, material, 0.5, seconds);
+  ASSERT_GT(path.size(), 2);
+  Eigen::MatrixXd powers(path.size(), 3);
+  for (int i = 0; i < path.size(); ++i) {
+    const double t = seconds * i / static_cast<double>(path.size() - 1);
+    powers.row(i) << 1.0, t, 0.5 * t * t;
+  }
+  const Eigen::Vector3d fit = powers.colPivHouseholderQr().solve(path);
+  std::printf("slid %.1f mm in %.1f s; acceleration %.3f m/s^2, Coulomb's %.3f m/s^2\n",
+              1e3 * (path(path.size() - 1) - path(0)), seconds, fit(2), coulomb);
+  EXPECT_NEAR(fit(2), coulomb, 0.05 * coulomb);
 }
 
 TEST(BulletContacts, BlockHangingFromASwingingDynamicBodyStaysStable) {

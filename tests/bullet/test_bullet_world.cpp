@@ -67,6 +67,35 @@ TEST(BulletWorld, PlaneCarriesTheWeightOfABlockResting) {
   EXPECT_GE(soft->state().positions.row(2).minCoeff(), -1e-12);
 }
 
+// set_threads: two blocks on the plane, one given two threads between steps, keep the same bits;
+// a count out of range is refused by name and changes nothing.
+TEST(BulletWorld, ThreadsSetBetweenStepsKeepTheBits) {
+  BulletScene one;
+  BulletScene two;
+  one.add_floor();
+  two.add_floor();
+  bullet::SoftBody* single = one.add_soft(block({8, 8, 4}, kCell, tissue(1e5)));
+  bullet::SoftBody* paired = two.add_soft(block({8, 8, 4}, kCell, tissue(1e5)));
+  ASSERT_NE(single, nullptr);
+  ASSERT_NE(paired, nullptr);
+  one.run(0.1);
+  two.run(0.1);
+  for (const int bad : {0, -1, bullet::SoftBody::kMaxThreads + 1}) {
+    const Status refused = paired->set_threads(bad);
+    EXPECT_FALSE(refused.ok());
+    EXPECT_NE(refused.message().find("threads must be 1 to 256, got " + std::to_string(bad)), std::string::npos)
+        << refused.message();
+  }
+  EXPECT_EQ(paired->threads(), 1);
+  ASSERT_TRUE(paired->set_threads(2).ok());
+  EXPECT_EQ(paired->threads(), 2);
+  one.run(0.2);
+  two.run(0.2);
+  EXPECT_TRUE(single->state().positions == paired->state().positions);
+  EXPECT_TRUE(single->state().velocities == paired->state().velocities);
+  EXPECT_GT((single->state().positions - single->model().rest_positions).norm(), 1e-6) << "it moved";
+}
+
 // max_added_mass: a block with a stiff core takes the longer sub-step the added inertia buys, and
 // rests on the plane carrying its weight, not its inertia; out of range, it is refused by name.
 TEST(BulletWorld, AddedMassLengthensTheSubStepAndWeighsNothing) {

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -429,6 +430,36 @@ TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
   EXPECT_NEAR(std::stod(fields[7]), -0.06 * force_z, 0.1 * 0.06 * force_z) << last;
 }
 
+// --threads gives the organ's force passes more threads: the forces and the frames stay the same
+// bytes; a count out of range is refused by name.
+TEST(DemoScene, ThreadsChangeNeitherTheForcesNorTheFrames) {
+  const TempDir dir;
+  write_block_obj(dir.path() / "block.obj");
+  std::ofstream(dir.path() / "scene.json") << R"({
+    "organ": {"mesh": "block.obj", "cell_size": 0.01},
+    "tools": [{"name": "probe", "capsule": {"radius": 0.004, "length": 0.05}, "keyframes": [
+      {"time": 0.0, "position": [0, 0, 0.04]}, {"time": 0.3, "position": [0.01, 0, 0.022]}]}],
+    "settle_time": 0.1, "duration": 0.3, "frames": 2, "render": {"width": 16, "height": 16}
+  })";
+  const auto read = [](const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string scene = (dir.path() / "scene.json").string();
+  for (const char* threads : {"1", "2"}) {
+    const ToolRun run =
+        run_tool("run " + scene + " --threads " + threads + " --out " + (dir.path() / threads).string());
+    ASSERT_EQ(run.exit_code, 0) << run.out;
+  }
+  const std::string forces = read(dir.path() / "1" / "tool_forces.csv");
+  EXPECT_GT(std::count(forces.begin(), forces.end(), '\n'), 70);
+  EXPECT_EQ(forces, read(dir.path() / "2" / "tool_forces.csv"));
+  EXPECT_EQ(read(dir.path() / "1" / "frame_0001.png"), read(dir.path() / "2" / "frame_0001.png"));
+  const ToolRun none = run_tool("run " + scene + " --threads 0");
+  EXPECT_EQ(none.exit_code, 2) << none.out;
+  EXPECT_NE(none.out.find("--threads"), std::string::npos) << none.out;
+}
+
 // The frames are written on a thread beside the physics: one that cannot be written ends the run
 // with its path and the reason, and the frames before it are there.
 TEST(DemoScene, AFrameThatCannotBeWrittenEndsTheRunWithItsPath) {
@@ -719,9 +750,11 @@ TEST(DemoCli, AFolderADeepNestAndAHugeFileAreRefusedAsScenes) {
 
 #ifdef CUBESPRING_HAS_BENCHMARKS  // bench-render runs in cubespring-bench
 TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
-  const ToolRun run = run_tool("bench-render --frames 2 --seconds 0.02 --sizes '64x36;96x54' --json", false);
+  const ToolRun run =
+      run_tool("bench-render --frames 2 --seconds 0.02 --sizes '64x36;96x54' --threads 2 --json", false);
   ASSERT_EQ(run.exit_code, 0) << run.out;
   const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["physics"]["threads"], 2);
   EXPECT_NEAR(j["physics"]["simulated_seconds"].get<double>(), 0.02, 1e-9);  // 5 steps of the scene's 4 ms
   EXPECT_GT(j["physics"]["real_time_factor"].get<double>(), 0.0);
   // the organ's sub-steps by part: the world step split into sub-steps of at most the organ's,
@@ -755,6 +788,9 @@ TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   const ToolRun bad = run_tool("bench-render --sizes 640x10");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.out.find("--sizes: '640x10' is not WIDTHxHEIGHT"), std::string::npos) << bad.out;
+  const ToolRun crowded = run_tool("bench-render --threads 1000");
+  EXPECT_EQ(crowded.exit_code, 2);
+  EXPECT_NE(crowded.out.find("--threads"), std::string::npos) << crowded.out;
   const ToolRun endless = run_tool("bench-render --seconds nan");
   EXPECT_NE(endless.exit_code, 0);
   EXPECT_NE(endless.out.find("--seconds: 'nan' is not a finite number > 0"), std::string::npos) << endless.out;

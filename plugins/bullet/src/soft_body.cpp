@@ -111,6 +111,15 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   return body;
 }
 
+Status SoftBody::set_threads(int threads) {
+  if (threads < 1 || threads > kMaxThreads) {
+    return Status::error("soft body threads must be 1 to " + std::to_string(kMaxThreads) + ", got " +
+                         std::to_string(threads));
+  }
+  step_settings_.threads = threads;
+  return {};
+}
+
 double SoftBody::unscaled_sub_step() const {
   if (mass_scaling_.nodes == 0) return sub_step_;
   return std::min(sub_step_, time_step_safety_ * mass_scaling_.time_step_before);

@@ -132,6 +132,11 @@ class SoftBody {
   double sub_step() const { return sub_step_; }
   /// What SoftBodySettings::max_added_mass added (nothing when it was 0 or the step implicit).
   const MassScaling& mass_scaling() const { return mass_scaling_; }
+  /// The threads its sub-steps' force passes may take (SoftBodySettings::threads), changed between
+  /// world steps; results do not depend on it. An error unless 1 to kMaxThreads.
+  Status set_threads(int threads);
+  int threads() const { return step_settings_.threads; }
+  static constexpr int kMaxThreads = 256;
   /// The sub-step without the added mass [s]; the world takes it (times the thin-cell factor,
   /// compressed_step_factor()) while some cell is squeezed thin: the thin-cell factor counts on
   /// the margin a body's rest step has, which the nodes the mass went to no longer leave the
