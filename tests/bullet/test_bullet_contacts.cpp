@@ -2,10 +2,12 @@
 // SPDX-License-Identifier: MIT
 // Contact of cubespring bodies with each common Bullet shape, friction against Coulomb's law, and
 // a soft body hanging from a swinging dynamic body.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <utility>
 
 #include <BulletCollision/CollisionShapes/btTriangleMesh.h>
 #include <BulletCollision/CollisionShapes/btUniformScalingShape.h>
@@ -259,6 +261,18 @@ Eigen::VectorXd soft_block_path(double tan_theta, double friction, const Materia
   return path;
 }
 
+// Coulomb's law holds the block still below its angle. Friction stopped the sliding only in the
+// velocities, after the sub-step's drift had moved the nodes by dt^2 times their tangential
+// acceleration, until 2026-12-06: the block crept 24 mm down in this second.
+TEST(BulletContacts, FrictionHoldsASoftBlockStillBelowTheCoulombAngle) {
+  const double mu = 0.5;
+  const Eigen::VectorXd path = soft_block_path(0.8 * mu, mu, soft_tissue(1e4), 0.5, 1.0);
+  ASSERT_GT(path.size(), 1);
+  const double creep = path(path.size() - 1) - path(0);
+  std::printf("crept %.4f mm in 1 s\n", 1e3 * creep);
+  EXPECT_LT(std::abs(creep), 1e-4);
+}
+
 // Above the angle every node on the floor slides, and the block's centre of mass accelerates as a
 // block on a rigid incline does, g (sin - mu cos) (no mass damping, which would brake it).
 TEST(BulletContacts, FrictionLetsASoftBlockSlideAboveTheCoulombAngle) {
@@ -379,6 +393,59 @@ TEST(BulletContacts, ThinToolSweptAcrossTheSurfaceDoesNotSlipBetweenVertices) {
   std::printf("deepest penetration of the swept capsule: %.3f cell (vertex contacts alone: %.3f cell)\n",
               with_faces / kCell, deepest_sweep_penetration(false) / kCell);
   EXPECT_LT(with_faces, 0.1 * kCell);
+}
+
+}  // namespace
+}  // namespace cubespring
+
+namespace cubespring {
+namespace {
+
+// A slab between the floor and a kinematic plate wider than it, held by friction alone (mu = 2, so
+// that nothing slides): the plate presses it by 1% of its height, then moves sideways by 1% and
+// holds. Stuck top and bottom, the slab is in simple shear. Returns the plate's sideways force
+// 0.5 s and 2 s after the shear [N].
+std::pair<double, double> sheared_slab_forces() {
+  BulletScene scene(Eigen::Vector3d::Zero());
+  scene.add_floor();
+  Material material = tissue(1e5);
+  material.mass_damping = 50.0;
+  material.stiffness_damping = 0.0;
+  bullet::SoftBodySettings settings = block({8, 8, 2}, kCell, material);
+  settings.lattice.model = CellModel::kExactBending;
+  settings.contact.friction = 2.0;
+  bullet::SoftBody* soft = scene.add_soft(settings);
+  EXPECT_NE(soft, nullptr);
+  const double height = 2 * kCell;
+  const double half = 0.005;
+  btRigidBody* plate =
+      scene.add_rigid(new btBoxShape(btVector3(0.06f, 0.06f, btScalar(half))), 0.0, at(0, 0, height + half), true);
+  const double step = 1.0 / 60.0;
+  const double press = 0.01 * height;
+  const double shear = 0.01 * height;
+  double early = 0.0;
+  for (int i = 1; i <= 30 + 30 + 120; ++i) {
+    const double down = press * std::min(1.0, i / 30.0);
+    const double side = shear * std::clamp((i - 30) / 30.0, 0.0, 1.0);
+    plate->setWorldTransform(at(side, 0, height + half - down));
+    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
+    if (i == 60 + 30) early = scene.world().getContactWrench(plate).force.x();
+  }
+  EXPECT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  return {early, scene.world().getContactWrench(plate).force.x()};
+}
+
+// It carries G A gamma (the shear of a slab 4 times wider than high; its free sides and bending
+// take a few percent) and keeps it. While friction acted on the velocities alone, the contacts
+// crept until the slab carried no shear: 0.0000 N.
+TEST(BulletContacts, FrictionHoldsASlabInSimpleShear) {
+  const auto [early, late] = sheared_slab_forces();
+  const double shear_modulus = 1e5 / (2 * 1.3);
+  const double gamma = 0.01 / 0.99;  // the sideways move over the pressed height
+  const double expected = shear_modulus * (8 * kCell) * (8 * kCell) * gamma;
+  std::printf("plate force x %.4f N after 0.5 s, %.4f N after 2 s; G A gamma %.4f N\n", early, late, expected);
+  EXPECT_NEAR(-late, expected, 0.1 * expected);
+  EXPECT_NEAR(late, early, 0.01 * std::abs(early)) << "it holds";
 }
 
 }  // namespace

@@ -82,13 +82,16 @@ class ContactProjector {
   // count: whether the points count as contacts of the sub-step (RigidTrack::substep_contacts);
   // last: the track's impulses of the last sub-step, for vertex points
   void apply_points(RigidTrack& track, bool count = true, LastImpulses* last = nullptr);
-  // Keeps the impulses of this pass's vertex points in `last`, and only those.
-  void remember(LastImpulses& last) const;
-  // The parts of apply_points(): each point's inverse mass, contact point and normal; the
-  // positions' sweeps; the velocities' sweeps, started from `last`.
-  void prepare_points(RigidTrack& track, bool count);
-  void project_positions();
-  void resolve_impulses(RigidTrack& track, const LastImpulses* last);
+  // A pass whose points start at `from`: the points before them are an earlier pass against the
+  // same body, already solved; the impulses of both are then swept together.
+  void solve_points(RigidTrack& track, std::size_t from, bool count, const LastImpulses* last);
+  // Keeps the impulses of the points [from, to) in `last`, and only those.
+  void remember(LastImpulses& last, std::size_t from, std::size_t to) const;
+  // The parts of a pass, on the points from `from` on: each point's inverse mass, contact point
+  // and normal; the positions' sweeps; the velocities' sweeps, started from `last`.
+  void prepare_points(RigidTrack& track, bool count, std::size_t from);
+  void project_positions(std::size_t from);
+  void resolve_impulses(RigidTrack& track, const LastImpulses* last, std::size_t from);
   bool movable(int node, double weight) const;
   // A point's weighted sum of a per-node field (positions, velocities), and a change of it given
   // to the point's movable nodes as a mass-weighted share of `change` (a move times W, an impulse).
