@@ -180,15 +180,17 @@ struct Slide {
   double acceleration;  ///< fitted to the path, x = x0 + v0 t + a t^2 / 2 [m/s^2]
 };
 
+// Gravity on a floor tilted by theta about y, tan(theta) given [m/s^2].
+btVector3 tilted_gravity(double tan_theta) {
+  const double theta = std::atan(tan_theta);
+  return btVector3(static_cast<btScalar>(9.81 * std::sin(theta)), 0, static_cast<btScalar>(-9.81 * std::cos(theta)));
+}
+
 // The box of slide_distance on a slab long enough to slide along: it settles where it holds
 // (tan = 0.8 mu), then the slab is tilted to tan(theta) and the box's path is sampled every step.
 Slide slide_after_tilting(double tan_theta, double friction, double seconds) {
-  const auto gravity = [](double tan) {
-    const double theta = std::atan(tan);
-    return btVector3(static_cast<btScalar>(9.81 * std::sin(theta)), 0, static_cast<btScalar>(-9.81 * std::cos(theta)));
-  };
   BulletScene scene;
-  scene.world().setGravity(gravity(0.8 * friction));
+  scene.world().setGravity(tilted_gravity(0.8 * friction));
   bullet::SoftBodySettings settings = block({24, 6, 2}, kCell, tissue(1e5));
   settings.lattice.model = CellModel::kExactBending;
   settings.contact.friction = friction;
@@ -198,7 +200,7 @@ Slide slide_after_tilting(double tan_theta, double friction, double seconds) {
       soft->constraints().fix_box(soft->model(), Eigen::Vector3d(-1, -1, -1e-9), Eigen::Vector3d(1, 1, 1e-9)).ok());
   btRigidBody* box = scene.add_rigid(new btBoxShape(btVector3(0.015f, 0.015f, 0.005f)), 0.02, at(-0.08, 0, 0.0251));
   scene.run(0.3);
-  scene.world().setGravity(gravity(tan_theta));  // the world passes it on to the box
+  scene.world().setGravity(tilted_gravity(tan_theta));  // the world passes it on to the box
   const double start = static_cast<double>(box->getWorldTransform().getOrigin().x());
   const double step = 1.0 / 60.0;
   const int steps = static_cast<int>(seconds / step + 0.5);
@@ -235,12 +237,8 @@ TEST(BulletContacts, FrictionSlidesAboveTheCoulombAngle) {
 // floor then tilted to tan(theta).
 Eigen::VectorXd soft_block_path(double tan_theta, double friction, const Material& material, double settle,
                                 double seconds) {
-  const auto gravity = [](double tan) {
-    const double theta = std::atan(tan);
-    return btVector3(static_cast<btScalar>(9.81 * std::sin(theta)), 0, static_cast<btScalar>(-9.81 * std::cos(theta)));
-  };
   BulletScene scene;
-  scene.world().setGravity(gravity(0.8 * friction));
+  scene.world().setGravity(tilted_gravity(0.8 * friction));
   scene.add_floor();
   bullet::SoftBodySettings settings = block({4, 4, 4}, kCell, material);
   settings.lattice.model = CellModel::kExactBending;
@@ -249,7 +247,7 @@ Eigen::VectorXd soft_block_path(double tan_theta, double friction, const Materia
   EXPECT_NE(soft, nullptr);
   if (soft == nullptr) return {};
   scene.run(settle);
-  scene.world().setGravity(gravity(tan_theta));
+  scene.world().setGravity(tilted_gravity(tan_theta));
   const double step = 1.0 / 60.0;
   Eigen::VectorXd path(static_cast<int>(seconds / step + 0.5) + 1);
   path(0) = soft->state().positions.row(0).mean();

@@ -457,8 +457,8 @@ void ContactProjector::apply_points(RigidTrack& track, bool count, LastImpulses*
 
 // A pass after another against the same body (box edges after the vertices) shares nodes with it:
 // solved on its own, the second pass's impulses pushed nodes the first had just stopped, and the
-// tissue under a 200 g box kept 8 cm/s at every sub-step's end. So the two
-// passes' impulses are swept once more together.
+// tissue under a resting 200 g box kept 8 cm/s at every sub-step's end though it stood still. So
+// the impulses of both passes are swept once more together.
 void ContactProjector::solve_points(RigidTrack& track, std::size_t from, bool count, const LastImpulses* last) {
   if (from == points_.size()) return;
   prepare_points(track, count, from);
