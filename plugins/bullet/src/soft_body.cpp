@@ -69,12 +69,11 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   // explicit: the stable step of the body at rest, which its contacts do not stiffen (they move
   // vertices, they add no springs)
   try {
-    if (settings.integrator != Integrator::kImplicitEuler && settings.max_added_mass > 0.0) {
-      body->mass_scaling_ = add_mass_for_time_step(body->model_, settings.max_added_mass);
-    }
-    // the scaling found the stable step with its inertia (from the same assembly)
-    const bool scaled = settings.integrator != Integrator::kImplicitEuler && settings.max_added_mass > 0.0;
-    body->sub_step_ = settings.integrator == Integrator::kImplicitEuler ? settings.max_implicit_step
+    const bool implicit = settings.integrator == Integrator::kImplicitEuler;
+    const bool scaled = !implicit && settings.max_added_mass > 0.0;
+    // the scaling finds the stable step with its inertia (from the same assembly)
+    if (scaled) body->mass_scaling_ = add_mass_for_time_step(body->model_, settings.max_added_mass);
+    body->sub_step_ = implicit ? settings.max_implicit_step
                       : scaled ? settings.time_step_safety * body->mass_scaling_.time_step_after
                                : settings.time_step_safety * max_stable_time_step(body->model_);
   } catch (const std::length_error& too_large) {
