@@ -11,6 +11,10 @@ shift || true
 
 packages=(build-essential cmake ninja-build ccache libeigen3-dev libgtest-dev nlohmann-json3-dev libcli11-dev libassimp-dev
   pkg-config libbullet-dev libosmesa6-dev libpng-dev "$@")
+# the presets that build with clang: Debian 12's clang 14, its OpenMP runtime and its sanitizers' runtimes
+case "$preset" in
+  asan | clang | tsan) packages+=(clang libomp-dev libclang-rt-14-dev) ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
