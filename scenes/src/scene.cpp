@@ -38,8 +38,10 @@ Status read_mesh_path(const JsonFields& fields, const std::string& key, const Sc
   }
   std::error_code ignored;
   if (!fs::is_regular_file(out, ignored)) {
-    if (fields.has(key)) return fields.error(key, "names a mesh file that does not exist: " + out);
-    return fields.error_here("\"" + fields.name_of(key) + "\" is not given and its default does not exist: " + out);
+    // quoted and cut: a path of kilobytes, or with a line break in it, keeps the message one line
+    const std::string shown = quote_for_message(out, 200);
+    if (fields.has(key)) return fields.error(key, "names a mesh file that does not exist: " + shown);
+    return fields.error_here("\"" + fields.name_of(key) + "\" is not given and its default does not exist: " + shown);
   }
   return {};
 }

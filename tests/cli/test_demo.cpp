@@ -698,9 +698,20 @@ TEST_F(SceneErrors, MissingOrganMeshNamesThePath) {
   const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"no_such_organ.obj\"\n  }\n}\n");
   EXPECT_NE(run.exit_code, 0);
   const std::string path = (dir_.path() / "no_such_organ.obj").string();
-  EXPECT_NE(run.out.find("scene.json:3: \"mesh\" in \"organ\" names a mesh file that does not exist: " + path),
+  EXPECT_NE(run.out.find("scene.json:3: \"mesh\" in \"organ\" names a mesh file that does not exist: \"" + path + "\""),
             std::string::npos)
       << run.out;
+}
+
+TEST_F(SceneErrors, AMissingMeshPathOfKilobytesOrWithALineBreakStaysOneShortLine) {
+  const std::string long_name = std::string(5000, 'x') + "\\n.obj";  // a JSON escape: a line break in the name
+  const ToolRun run = run_scene("{\n  \"organ\": {\n    \"mesh\": \"" + long_name + "\"\n  }\n}\n");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.out.find("scene.json:3: \"mesh\" in \"organ\" names a mesh file that does not exist: \""),
+            std::string::npos)
+      << run.out.substr(0, 600);
+  EXPECT_LT(run.out.size(), 600u) << run.out.substr(0, 600);
+  EXPECT_EQ(run.out.find('\n'), run.out.size() - 1) << run.out.substr(0, 600);  // one line, ended
 }
 
 TEST_F(SceneErrors, MaterialThatMatchesNoPartNamesIt) {
