@@ -44,7 +44,8 @@ int run(const RunCommandOptions& options) {
     std::cerr << "error: " << output.message() << "\n";
     return 1;
   }
-  std::cout << "wrote " << output->frames << " frames, tool_forces.csv and tool_force.png to " << scene.output;
+  std::cout << "wrote " << output->frames << (output->frames == 1 ? " frame" : " frames")
+            << ", tool_forces.csv and tool_force.png to " << scene.output;
   if (options.out.empty()) {
     std::error_code ignored;
     std::cout << " (" << fs::absolute(scene.output, ignored).lexically_normal().string()

@@ -555,6 +555,7 @@ TEST(DemoScene, LightsFromTheSceneShadeTheFacesTheyFace) {
     const ToolRun run =
         run_tool("run " + (dir.path() / (name + ".json")).string() + " --out " + (dir.path() / name).string());
     EXPECT_EQ(run.exit_code, 0) << run.out;
+    EXPECT_NE(run.out.find("wrote 1 frame, tool_forces.csv"), std::string::npos) << run.out;  // not "1 frames"
     return cubespring::read_png((dir.path() / name / "frame_0000.png").string());
   };
   const auto rgb_at = [&](const cubespring::Image& image, const Eigen::Vector3d& point) {
@@ -711,7 +712,8 @@ TEST_F(SceneErrors, AMissingMeshPathOfKilobytesOrWithALineBreakStaysOneShortLine
             std::string::npos)
       << run.out.substr(0, 600);
   EXPECT_LT(run.out.size(), 600u) << run.out.substr(0, 600);
-  EXPECT_EQ(run.out.find('\n'), run.out.size() - 1) << run.out.substr(0, 600);  // one line, ended
+  EXPECT_EQ(std::count(run.out.begin(), run.out.end(), '\n'), 1) << run.out.substr(0, 600);  // one line
+  EXPECT_EQ(run.out.back(), '\n');
 }
 
 TEST_F(SceneErrors, MaterialThatMatchesNoPartNamesIt) {
