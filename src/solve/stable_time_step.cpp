@@ -102,60 +102,6 @@ double max_frequency(const Model& model, FrequencyBound bound) {
   return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.inertia())));
 }
 
-namespace {
-
-constexpr double kWideEnough = 2.0;  // a face up to twice its rest area: as at rest
-
-// A cell's thickness across `axis` as a fraction of its rest size, divided by the square root of
-// how far its face is widened beyond kWideEnough (stable_time_step.h), from its frame; 0 for a cell
-// flat or inside out.
-double effective_thickness(const Model& model, const CellFrame& frame, int axis) {
-  const double volume = frame.volume();
-  const double face = frame.edge[(axis + 1) % 3].cross(frame.edge[(axis + 2) % 3]).norm();
-  const double thickness = face > 0.0 ? volume / face / model.cell_size[axis] : 0.0;  // of the rest size
-  // stretched flat, it is stiffer across than its thickness says
-  const double rest_face = model.cell_size[(axis + 1) % 3] * model.cell_size[(axis + 2) % 3];
-  const double widened = face / (kWideEnough * rest_face);
-  return std::max(thickness, 0.0) / (widened > 1.0 ? std::sqrt(widened) : 1.0);
-}
-
-}  // namespace
-
-double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positions) {
-  if (model.cell_law == CellLaw::kSprings) return 1.0;
-  constexpr double kLeast = 0.2;
-  // The thinnest cell is found by the squares of the effective thicknesses, which need no square
-  // root unless a face is widened and no division unless they are the least so far (the roots were
-  // most of this function's time, which is run every few sub-steps), and its thickness is then
-  // taken as effective_thickness() gives it.
-  double least_square = 1.0;  // of the effective thickness; 1 = at rest
-  int thinnest_cell = -1, thinnest_axis = 0;
-  for (int c = 0; c < model.num_cells(); ++c) {
-    const CellFrame frame = cell_frame(model, positions, c);
-    const double volume = frame.volume();
-    if (!(volume > 0.0)) return kLeast;  // flat or inside out (or not a number)
-    for (int axis = 0; axis < 3; ++axis) {
-      const double face_square = frame.edge[(axis + 1) % 3].cross(frame.edge[(axis + 2) % 3]).squaredNorm();
-      const double rest_face = model.cell_size[(axis + 1) % 3] * model.cell_size[(axis + 2) % 3];
-      const double widest = kWideEnough * rest_face;
-      // the square is numerator / denominator, compared without a division
-      double numerator = volume * volume;
-      if (face_square > widest * widest) numerator *= widest / std::sqrt(face_square);
-      const double denominator = face_square * model.cell_size[axis] * model.cell_size[axis];
-      if (numerator < least_square * denominator) {
-        least_square = numerator / denominator;
-        thinnest_cell = c;
-        thinnest_axis = axis;
-      }
-    }
-  }
-  const double thinnest =
-      thinnest_cell < 0
-          ? 1.0
-          : std::min(1.0, effective_thickness(model, cell_frame(model, positions, thinnest_cell), thinnest_axis));
-  return std::clamp(thinnest / kThickEnough, kLeast, 1.0);
-}
-
 double max_stable_time_step(const Model& model, FrequencyBound bound) {
   return stable_step_for_frequency(model, max_frequency(model, bound));
 }
