@@ -10,7 +10,6 @@
 #include <Eigen/Eigenvalues>
 
 #include "cubespring/stiffness.h"
-#include "model/cell_geometry.h"
 #include "solve/gershgorin.h"
 
 namespace cubespring {
