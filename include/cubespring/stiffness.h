@@ -75,10 +75,17 @@ class StiffnessAssembler {
                 double damping_scale, const NodeRows& rows, SparseMatrix& matrix) const;
   void add_block(SparseMatrix& matrix, const NodeRows& rows, int row_node, int position,
                  const Eigen::Matrix3d& block) const;
+  // A cell's 8 x 8 corner blocks (corner p's row, corner q's column at p * 8 + q): its terms add
+  // into them, and they go into the matrix once (add_cell_blocks).
+  using CornerBlocks = std::array<Eigen::Matrix3d, 64>;
   void add_twist(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness,
-                 const NodeRows& rows, SparseMatrix& matrix) const;
+                 CornerBlocks& blocks) const;
   void add_neo_hookean(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact, double stiffness_scale,
-                       const NodeRows& rows, SparseMatrix& matrix) const;
+                       CornerBlocks& blocks) const;
+  void add_inversion_recovery(const Model& model, const Eigen::Matrix3Xd& x, int cell, bool exact,
+                              double stiffness_scale, CornerBlocks& blocks) const;
+  void add_cell_blocks(const Model& model, int cell, const CornerBlocks& blocks, const NodeRows& rows,
+                       SparseMatrix& matrix) const;
 
   SparseMatrix pattern_;
   bool pattern_handed_over_ = false;                  // by assemble_once

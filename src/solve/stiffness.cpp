@@ -146,7 +146,7 @@ void StiffnessAssembler::add_block(SparseMatrix& matrix, const NodeRows& rows, i
 // grad_k w = sum_side s (alpha_k c + kappa_k a) / h^2 and hess_km w = sum_side s (alpha_k kappa_m +
 // kappa_k alpha_m) I / h^2; the approximation keeps only the Gauss-Newton part grad w grad w^T.
 void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact, double k,
-                                   const NodeRows& rows, SparseMatrix& matrix) const {
+                                   CornerBlocks& blocks) const {
   const double h = model.cell_size.x();
   std::array<Eigen::Vector3d, kEdgesPerCell> edges;
   for (int e = 0; e < kEdgesPerCell; ++e) {
@@ -167,35 +167,46 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
     }
     return weights;
   };
+  // each direction's grad w and w, then every corner block once with the three directions summed
+  // (a block each per direction had been most of the twist's time)
   const auto& faces = twist_faces();
+  std::array<std::array<Eigen::Vector3d, kCornersPerCell>, 3> gradient;
+  std::array<std::array<std::array<double, kCornersPerCell>, 2>, 3> alpha, kappa;
+  std::array<double, 3> w{};
   for (int d = 0; d < 3; ++d) {
-    std::array<Eigen::Vector3d, kCornersPerCell> gradient;
-    gradient.fill(Eigen::Vector3d::Zero());
-    std::array<std::array<double, kCornersPerCell>, 2> alpha, kappa;
+    gradient[d].fill(Eigen::Vector3d::Zero());
     std::array<double, 2> gamma{};
     for (int side = 0; side < 2; ++side) {
       const double sign = side == 0 ? -1.0 : 1.0;
       const FaceMeans means = face_means(faces[d][side], edges);
-      alpha[side] = coefficients(faces[d][side].a_edges);
-      kappa[side] = coefficients(faces[d][side].c_edges);
+      alpha[d][side] = coefficients(faces[d][side].a_edges);
+      kappa[d][side] = coefficients(faces[d][side].c_edges);
       gamma[side] = means.a.dot(means.c) / (h * h);
       for (int p = 0; p < kCornersPerCell; ++p) {
-        gradient[p] += sign * (alpha[side][p] * means.c + kappa[side][p] * means.a) / (h * h);
+        gradient[d][p] += sign * (alpha[d][side][p] * means.c + kappa[d][side][p] * means.a) / (h * h);
       }
     }
-    const double w = gamma[1] - gamma[0];
-    const double scale = k * h * h * h;
-    for (int p = 0; p < kCornersPerCell; ++p) {
-      for (int q = 0; q < kCornersPerCell; ++q) {
-        Eigen::Matrix3d block = scale * gradient[p] * gradient[q].transpose();
-        if (exact) {
-          double curvature = 0.0;
-          for (int side = 0; side < 2; ++side) {
-            curvature += (side == 0 ? -1.0 : 1.0) * (alpha[side][p] * kappa[side][q] + kappa[side][p] * alpha[side][q]);
-          }
-          block.diagonal().array() += scale * w * curvature / (h * h);
+    w[d] = gamma[1] - gamma[0];
+  }
+  const double scale = k * h * h * h;
+  // element by element: Eigen's 3x3 temporaries here were written to the stack and read back
+  // across the write, which stalled on the store (most of this function's time)
+  for (int p = 0; p < kCornersPerCell; ++p) {
+    for (int q = 0; q < kCornersPerCell; ++q) {
+      Eigen::Matrix3d& block = blocks[p * kCornersPerCell + q];
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) {
+          block(a, b) += scale * (gradient[0][p][a] * gradient[0][q][b] + gradient[1][p][a] * gradient[1][q][b] +
+                                  gradient[2][p][a] * gradient[2][q][b]);
         }
-        add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+      }
+      if (exact) {
+        double curvature = 0.0;  // sum over d of w_d hess_pq w_d (a multiple of I)
+        for (int d = 0; d < 3; ++d) {
+          curvature += w[d] * ((alpha[d][1][p] * kappa[d][1][q] + kappa[d][1][p] * alpha[d][1][q]) -
+                               (alpha[d][0][p] * kappa[d][0][q] + kappa[d][0][p] * alpha[d][0][q]));
+        }
+        for (int a = 0; a < 3; ++a) block(a, a) += scale * curvature / (h * h);
       }
     }
   }
@@ -205,7 +216,7 @@ void StiffnessAssembler::add_twist(const Model& model, const Eigen::Matrix3Xd& x
 // edge vectors m_p = 1/4 sum_k s_p(k) x_k gives the corner blocks sum_pq s_p(k) s_q(l) / 16 H_pq;
 // the approximation takes H's positive part (its negative eigenvalues set to zero).
 void StiffnessAssembler::add_neo_hookean(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact,
-                                         double stiffness_scale, const NodeRows& rows, SparseMatrix& matrix) const {
+                                         double stiffness_scale, CornerBlocks& blocks) const {
   const NeoHookeanConstants& constants = model.law_constants[model.cell_material[c]];
   const CellFrame frame = cell_frame(model, x, c);
   MeanEdgeHessian h = neo_hookean_cell_hessian(constants, frame);
@@ -217,14 +228,72 @@ void StiffnessAssembler::add_neo_hookean(const Model& model, const Eigen::Matrix
     h = solver.eigenvectors() * solver.eigenvalues().cwiseMax(0.0).asDiagonal() * solver.eigenvectors().transpose();
   }
   h *= stiffness_scale / 16.0;
+  // corner p's row of the sum, s(p)^T H: three blocks (one per mean edge b); then each corner
+  // block once, element by element (no 3x3 temporaries, as in add_twist)
+  double row[kCornersPerCell][3][3][3];  // [p][b][i][j]
+  for (int p = 0; p < kCornersPerCell; ++p) {
+    for (int b = 0; b < 3; ++b) {
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          row[p][b][i][j] = corner_side(p, 0) * h(i, 3 * b + j) + corner_side(p, 1) * h(3 + i, 3 * b + j) +
+                            corner_side(p, 2) * h(6 + i, 3 * b + j);
+        }
+      }
+    }
+  }
+  for (int p = 0; p < kCornersPerCell; ++p) {
+    for (int q = 0; q < kCornersPerCell; ++q) {
+      Eigen::Matrix3d& block = blocks[p * kCornersPerCell + q];
+      const double s0 = corner_side(q, 0), s1 = corner_side(q, 1), s2 = corner_side(q, 2);
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) block(i, j) += s0 * row[p][0][i][j] + s1 * row[p][1][i][j] + s2 * row[p][2][i][j];
+      }
+    }
+  }
+}
+
+// The springs law's inversion recovery of a crushed cell (kCrushedVolumeFraction): k_inv / V0
+// grad V grad V^T, and with the exact kind k_inv (V / V0 - phi) hess V.
+void StiffnessAssembler::add_inversion_recovery(const Model& model, const Eigen::Matrix3Xd& x, int c, bool exact,
+                                                double stiffness_scale, CornerBlocks& blocks) const {
+  const double rest_volume = model.rest_cell_volume();
+  const CellFrame frame = cell_frame(model, x, c);
+  const double ratio = frame.volume() / rest_volume;
+  if (ratio >= kCrushedVolumeFraction) return;
+  const double k_inv = stiffness_scale * model.cell_inversion_stiffness[c];
+  const auto gradient = frame.volume_gradient();
+  // second derivatives of V = a . (b x c) with respect to the mean edge vectors
+  std::array<std::array<Eigen::Matrix3d, 3>, 3> hess;
+  hess[0][0] = hess[1][1] = hess[2][2] = Eigen::Matrix3d::Zero();
+  hess[0][1] = -cross_matrix(frame.edge[2]);
+  hess[0][2] = cross_matrix(frame.edge[1]);
+  hess[1][2] = -cross_matrix(frame.edge[0]);
+  hess[1][0] = hess[0][1].transpose();
+  hess[2][0] = hess[0][2].transpose();
+  hess[2][1] = hess[1][2].transpose();
+  const double curvature_scale = exact ? k_inv * (ratio - kCrushedVolumeFraction) : 0.0;
+  for (int p = 0; p < kCornersPerCell; ++p) {
+    for (int q = 0; q < kCornersPerCell; ++q) {
+      Eigen::Matrix3d block = (k_inv / rest_volume) * gradient[p] * gradient[q].transpose();
+      if (curvature_scale != 0.0) {
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b) {
+            block += curvature_scale * corner_side(p, a) * corner_side(q, b) / 16.0 * hess[a][b];
+          }
+        }
+      }
+      blocks[p * kCornersPerCell + q] += block;
+    }
+  }
+}
+
+void StiffnessAssembler::add_cell_blocks(const Model& model, int c, const CornerBlocks& blocks, const NodeRows& rows,
+                                         SparseMatrix& matrix) const {
   for (int p = 0; p < kCornersPerCell; ++p) {
     if (!rows.has(model.cell_nodes[c][p])) continue;
     for (int q = 0; q < kCornersPerCell; ++q) {
-      Eigen::Matrix3d block = Eigen::Matrix3d::Zero();
-      for (int a = 0; a < 3; ++a) {
-        for (int b = 0; b < 3; ++b) block += (corner_side(p, a) * corner_side(q, b)) * h.block<3, 3>(3 * a, 3 * b);
-      }
-      add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
+      add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q],
+                blocks[p * kCornersPerCell + q]);
     }
   }
 }
@@ -331,11 +400,11 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
                             model.cell_nodes.begin());
   };
   const int cell_end = corner_0_below(rows.end);
+  CornerBlocks blocks;
   for (int c = corner_0_below(rows.begin - cell_span_); c < cell_end; ++c) {
     const auto& corners = model.cell_nodes[c];
     if (std::none_of(corners.begin(), corners.end(), [&](int n) { return rows.has(n); })) continue;
     const bool neo_hookean = model.cell_law == CellLaw::kNeoHookean;
-    if (neo_hookean) add_neo_hookean(model, x, c, exact, stiffness_scale, rows, matrix);
     // the neo-Hookean term's edge correction is exact only: its approximation is add_neo_hookean's
     const Eigen::Matrix3d& d = exact ? model.cell_correction[c] : positive_correction_[c];
     // and it has no damping (the law adds none)
@@ -354,47 +423,26 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
                 : Eigen::Vector3d::Zero();
       }
     }
+    // the correction's blocks start the cell's (element by element, as add_twist's)
     for (int p = 0; p < kCornersPerCell; ++p) {
       const Eigen::Matrix3d left = strain_gradient[p] * weighted;
       for (int q = 0; q < kCornersPerCell; ++q) {
-        add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q],
-                  left * strain_gradient[q].transpose());
-      }
-    }
-
-    if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
-      add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], rows, matrix);
-    }
-    if (neo_hookean) continue;  // the law's barrier replaces the inversion recovery
-
-    const CellFrame frame = cell_frame(model, x, c);
-    const double ratio = frame.volume() / rest_volume;
-    if (ratio >= kCrushedVolumeFraction) continue;
-    const double k_inv = stiffness_scale * model.cell_inversion_stiffness[c];
-    const auto gradient = frame.volume_gradient();
-    // second derivatives of V = a . (b x c) with respect to the mean edge vectors
-    std::array<std::array<Eigen::Matrix3d, 3>, 3> hess;
-    hess[0][0] = hess[1][1] = hess[2][2] = Eigen::Matrix3d::Zero();
-    hess[0][1] = -cross_matrix(frame.edge[2]);
-    hess[0][2] = cross_matrix(frame.edge[1]);
-    hess[1][2] = -cross_matrix(frame.edge[0]);
-    hess[1][0] = hess[0][1].transpose();
-    hess[2][0] = hess[0][2].transpose();
-    hess[2][1] = hess[1][2].transpose();
-    const double curvature_scale = exact ? k_inv * (ratio - kCrushedVolumeFraction) : 0.0;
-    for (int p = 0; p < kCornersPerCell; ++p) {
-      for (int q = 0; q < kCornersPerCell; ++q) {
-        Eigen::Matrix3d block = (k_inv / rest_volume) * gradient[p] * gradient[q].transpose();
-        if (curvature_scale != 0.0) {
-          for (int a = 0; a < 3; ++a) {
-            for (int b = 0; b < 3; ++b) {
-              block += curvature_scale * corner_side(p, a) * corner_side(q, b) / 16.0 * hess[a][b];
-            }
+        Eigen::Matrix3d& block = blocks[p * kCornersPerCell + q];
+        const Eigen::Matrix3d& right = strain_gradient[q];
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b) {
+            block(a, b) = left(a, 0) * right(b, 0) + left(a, 1) * right(b, 1) + left(a, 2) * right(b, 2);
           }
         }
-        add_block(matrix, rows, model.cell_nodes[c][p], cell_position_[c][p * kCornersPerCell + q], block);
       }
     }
+    if (neo_hookean) add_neo_hookean(model, x, c, exact, stiffness_scale, blocks);
+
+    if (model.has_twist && model.cell_twist_stiffness[c] > 0.0) {
+      add_twist(model, x, c, exact, stiffness_scale * model.cell_twist_stiffness[c], blocks);
+    }
+    if (!neo_hookean) add_inversion_recovery(model, x, c, exact, stiffness_scale, blocks);
+    add_cell_blocks(model, c, blocks, rows, matrix);
   }
 }
 
