@@ -3,8 +3,9 @@
 # SPDX-License-Identifier: MIT
 # Fuzzes with libFuzzer (clang and Debian's libclang-rt-dev): load_mesh for each mesh format that
 # load_mesh checks before assimp reads it, or reads in a bounded process of its own, and
-# parse_scene (tests/fuzz/fuzz_scene.cpp, which also checks the message rules):
-#   scripts/fuzz.sh [SECONDS per target, default 240] [TARGET ...] (ply off dae gltf scene)
+# parse_scene (tests/fuzz/fuzz_scene.cpp, which also checks the message rules), and the command
+# line of measure and voxelize (tests/fuzz/fuzz_cli.cpp, the same rules):
+#   scripts/fuzz.sh [SECONDS per target, default 240] [TARGET ...] (ply off dae gltf scene cli)
 #   scripts/fuzz.sh --ci   (CI's short run: a fixed number of inputs per target from a fixed seed,
 #                           so that it finds the same on every run of the same code)
 # The parts not fuzzed come from a build folder, FUZZ_BUILD (default build/release: run
@@ -13,7 +14,7 @@
 # (tests/mesh/test_load_mesh.cpp, tests/cli/test_demo.cpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-declare -A ci_runs=([scene]=200000 [ply]=20000 [off]=20000 [gltf]=400 [dae]=400)
+declare -A ci_runs=([scene]=200000 [ply]=20000 [off]=20000 [gltf]=400 [dae]=400 [cli]=100000)
 ci=false
 if [ "${1:-}" = --ci ]; then
   ci=true
@@ -22,12 +23,12 @@ if [ "${1:-}" = --ci ]; then
 fi
 seconds=${1:-240}
 shift || true
-targets=("${@:-ply off dae gltf scene}")
+targets=("${@:-ply off dae gltf scene cli}")
 compiler=$(command -v clang++-16 || command -v clang++-14 || command -v clang++)
 mkdir -p build/fuzz
 release=${FUZZ_BUILD:-build/release}
 flags=(-std=c++17 -O1 -g -fsanitize=fuzzer,address -Iinclude -I/usr/include/eigen3)
-# the two targets build side by side
+# the targets build side by side
 "$compiler" "${flags[@]}" -Iplugins/mesh/include tests/fuzz/fuzz_load_mesh.cpp plugins/mesh/src/*.cpp \
   "$release"/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_load_mesh &
 mesh_build=$!
@@ -38,7 +39,16 @@ mesh_build=$!
   tests/fuzz/fuzz_scene.cpp $(ls scenes/src/*.cpp | grep -v scene_frames) "$release"/plugins/bullet/libcubespring_bullet.a \
   "$release"/plugins/render/libcubespring_view.a "$release"/plugins/mesh/libcubespring_mesh.a \
   "$release"/src/libcubespring.a $(pkg-config --libs bullet) -lassimp -fopenmp -o build/fuzz/fuzz_scene
+# the command line's parser and its commands' checks, instrumented; the rest from the build folder
+"$compiler" "${flags[@]}" -Iapps/common -Iapps/cubespring -Ivalidation/include -Iplugins/mesh/include \
+  tests/fuzz/fuzz_cli.cpp apps/common/arguments.cpp apps/common/commands.cpp apps/common/message_text.cpp \
+  apps/common/number_checks.cpp \
+  apps/cubespring/measure_command.cpp apps/cubespring/voxelize_command.cpp \
+  "$release"/validation/libcubespring_validation.a "$release"/plugins/mesh/libcubespring_mesh.a \
+  "$release"/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_cli &
+cli_build=$!
 wait "$mesh_build"
+wait "$cli_build"
 for target in ${targets[@]}; do
   corpus=build/fuzz/corpus_$target
   if $ci; then rm -rf "$corpus"; fi  # the same seeds every time
@@ -50,6 +60,12 @@ for target in ${targets[@]}; do
   else
     length=(-max_total_time="$seconds")
     echo "fuzzing $target for $seconds s"
+  fi
+  if [ "$target" = cli ]; then
+    # arguments one a line: a command line is short
+    (cd build/fuzz && ./fuzz_cli "corpus_$target" "${length[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=1024 \
+      -dict=../../tests/fuzz/cli.dict)
+    continue
   fi
   if [ "$target" = scene ]; then
     # a scene file may be up to 16 MB, but the parser's work is in its structure: short inputs

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include "message_text.h"
+
 namespace cubespring::app {
 namespace {
 
@@ -22,7 +24,8 @@ std::vector<std::string> split(const std::string& text) {
 
 Result<Eigen::Vector3i> parse_counts(const std::string& flag, const std::string& text) {
   const std::vector<std::string> parts = split(text);
-  const std::string expected = flag + " " + text + ": expected three whole numbers from 1 to 100000, as NX,NY,NZ";
+  const std::string expected =
+      flag + " " + shown_argument(text) + ": expected three whole numbers from 1 to 100000, as NX,NY,NZ";
   if (parts.size() != 3) return Status::error(expected);
   Eigen::Vector3i counts;
   for (int i = 0; i < 3; ++i) {
@@ -42,7 +45,7 @@ Result<Eigen::Vector3i> parse_counts(const std::string& flag, const std::string&
 Result<Eigen::Vector3d> parse_sizes(const std::string& flag, const std::string& text) {
   const std::vector<std::string> parts = split(text);
   const std::string expected =
-      flag + " " + text + ": expected one size or three sizes HX,HY,HZ, each a number > 0 (metres)";
+      flag + " " + shown_argument(text) + ": expected one size or three sizes HX,HY,HZ, each a number > 0 (metres)";
   if (parts.size() != 1 && parts.size() != 3) return Status::error(expected);
   Eigen::Vector3d sizes;
   for (std::size_t i = 0; i < parts.size(); ++i) {

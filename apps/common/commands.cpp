@@ -5,7 +5,11 @@
 #include <exception>
 #include <iostream>
 
+#include "message_text.h"
+
 namespace cubespring::app {
+
+std::string parse_error_message(const CLI::ParseError& error) { return bounded_message(error.what()); }
 
 int parse_and_run(CLI::App& app, int argc, char** argv, const std::map<std::string, Command>& commands,
                   const Command& otherwise) {
@@ -18,7 +22,7 @@ int parse_and_run(CLI::App& app, int argc, char** argv, const std::map<std::stri
     std::cout << e.what() << "\n";
     return 0;
   } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << parse_error_message(e) << "\n";
     return 2;
   }
   // the commands report bad input themselves

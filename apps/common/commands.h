@@ -9,10 +9,22 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cubespring/result.h"
+
 namespace cubespring::app {
 
 /// Adds a subcommand to the app; the returned function runs it after parsing and gives the exit code.
 using Command = std::function<int()>;
+/// A subcommand in two stages: `check` reads the parsed flags as the command does before it
+/// starts its work (reads no mesh, runs no experiment) and gives the message of the first one at
+/// fault, which `run` prints after "error: " with exit 2; `run` does the whole, the check
+/// included. The command line's fuzz target (tests/fuzz/fuzz_cli.cpp) calls `check` alone.
+struct CheckedCommand {
+  std::function<Status()> check;
+  Command run;
+};
+CheckedCommand add_checked_measure_command(CLI::App& app);
+CheckedCommand add_checked_voxelize_command(CLI::App& app);
 Command add_measure_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_voxelize_command(CLI::App& app);
@@ -26,6 +38,10 @@ Command add_bench_contact_command(CLI::App& app);
 Command add_run_command(CLI::App& app);
 /// Only with the demo (CUBESPRING_HAS_DEMO): the demo's physics and rendering costs.
 Command add_bench_render_command(CLI::App& app);
+
+/// What parse_and_run prints after "error: " for a parse error: CLI11's message, whose quoted
+/// arguments are cut short and kept on its line (message_text.h).
+std::string parse_error_message(const CLI::ParseError& error);
 
 /// Parses the arguments and runs the subcommand chosen among `commands` (`otherwise` when none
 /// is, or the help when that is empty); gives the exit code. Help and version answer on stdout; a

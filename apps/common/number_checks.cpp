@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <string>
 
+#include "message_text.h"
+
 namespace cubespring::app {
 namespace {
 
@@ -16,8 +18,8 @@ CLI::Validator number_check(bool (*accept)(double), const std::string& what, con
       [accept, what](std::string& text) -> std::string {
         char* end = nullptr;
         const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || end != text.c_str() + text.size()) return "'" + text + "' is not a number";
-        if (!accept(value)) return "'" + text + "' is not " + what;
+        if (text.empty() || end != text.c_str() + text.size()) return "'" + shown_argument(text) + "' is not a number";
+        if (!accept(value)) return "'" + shown_argument(text) + "' is not " + what;
         return {};
       },
       description, name);
@@ -38,7 +40,7 @@ CLI::Validator byte_count() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos) {
-          return "'" + text + "' is not a whole number of bytes >= 0";
+          return "'" + shown_argument(text) + "' is not a whole number of bytes >= 0";
         }
         return {};
       },

@@ -305,13 +305,21 @@ void announce_long_solves(ExperimentSettings& settings) {
                cells.x(), cells.y(), cells.z(), cost.peak_bytes / 1e9, seconds, cost.operations);
 }
 
-int run_measure(const MeasureOptions& o) {
-  Result<Experiment> experiment = parse_experiment(o.experiment);
-  if (!experiment) {
-    std::cerr << "error: " << experiment.message() << "\n";
-    return 2;
-  }
+// What the flags ask for, checked as far as they can be before the experiment starts: the
+// experiment, its settings and its finite-element reference, or the message of the first flag
+// at fault (printed after "error: ", exit 2). The command line's fuzz target calls it alone.
+struct MeasurePlan {
+  Experiment experiment = Experiment::kElongation;
   ExperimentSettings settings;
+  std::optional<FemSolution> reference;
+};
+
+Result<MeasurePlan> plan_measure(const MeasureOptions& o) {
+  Result<Experiment> experiment = parse_experiment(o.experiment);
+  if (!experiment) return experiment.status();
+  MeasurePlan plan;
+  plan.experiment = experiment.value();
+  ExperimentSettings& settings = plan.settings;
   settings.material.young_modulus = o.young;
   settings.material.poisson_ratio = o.poisson;
   settings.material.density = o.density;
@@ -338,38 +346,40 @@ int run_measure(const MeasureOptions& o) {
     if (chosen == Experiment::kBondedCompression) settings.strain = -0.1825;  // the silicone experiment's
   }
   Result<Eigen::Vector3i> cells = parse_counts("--cells", o.cells.empty() ? default_cells : o.cells);
+  if (!cells) return cells.status();
   Result<Eigen::Vector3d> cell_size = parse_sizes("--cell-size", o.cell_size);
-  for (const Status* status : {&cells.status(), &cell_size.status()}) {
-    if (!status->ok()) {
-      std::cerr << "error: " << status->message() << "\n";
-      return 2;
-    }
-  }
+  if (!cell_size) return cell_size.status();
   settings.cells = cells.value();
   settings.cell_size = cell_size.value();
-  if ((!o.png.empty() || !o.reference.empty()) && experiment.value() != Experiment::kCantilever) {
-    std::cerr << "error: " << (o.png.empty() ? "--reference" : "--png") << ": only the cantilever has a picture "
-              << "and a finite-element reference, not " << o.experiment << "\n";
-    return 2;
+  if ((!o.png.empty() || !o.reference.empty()) && chosen != Experiment::kCantilever) {
+    return Status::error(std::string(o.png.empty() ? "--reference" : "--png") +
+                         ": only the cantilever has a picture and a finite-element reference, not " + o.experiment);
   }
-  std::optional<FemSolution> reference;
   if (!o.reference.empty()) {
     Result<FemSolution> read = read_calculix_frd(o.reference);
-    if (!read) {
-      std::cerr << "error: --reference: " << read.message() << "\n";
-      return 2;
-    }
-    reference = std::move(read).value();
+    if (!read) return Status::error("--reference: " + read.message());
+    plan.reference = std::move(read).value();
   }
   settings.max_memory_bytes = o.max_memory;
-  if (Status checked = check_experiment(experiment.value(), settings); !checked) {
+  if (Status checked = check_experiment(chosen, settings); !checked) {
     const bool memory = checked.message().find("memory limit") != std::string::npos;
-    std::cerr << "error: " << with_flag(checked.message())
-              << (memory ? "; give fewer --cells or a larger --max-memory" : "") << "\n";
+    return Status::error(with_flag(checked.message()) +
+                         (memory ? "; give fewer --cells or a larger --max-memory" : ""));
+  }
+  return plan;
+}
+
+int run_measure(const MeasureOptions& o) {
+  Result<MeasurePlan> planned = plan_measure(o);
+  if (!planned) {
+    std::cerr << "error: " << planned.message() << "\n";
     return 2;
   }
+  MeasurePlan& plan = planned.value();
+  ExperimentSettings& settings = plan.settings;
+  std::optional<FemSolution>& reference = plan.reference;
   announce_long_solves(settings);
-  Result<ExperimentResult> result = run_experiment(experiment.value(), settings);
+  Result<ExperimentResult> result = run_experiment(plan.experiment, settings);
   if (!result) {
     std::cerr << "error: " << with_flag(result.message()) << "\n";
     return 2;
@@ -402,7 +412,7 @@ int run_measure(const MeasureOptions& o) {
 
 }  // namespace
 
-Command add_measure_command(CLI::App& app) {
+CheckedCommand add_checked_measure_command(CLI::App& app) {
   auto options = std::make_shared<MeasureOptions>();
   CLI::App* cmd = app.add_subcommand("measure",
                                      "Run one of the paper's virtual experiments and measure E, nu, G, B "
@@ -480,13 +490,23 @@ Command add_measure_command(CLI::App& app) {
                   "--png: draw displacements this many times their size (colours stay true)")
       ->check(finite_positive_number())
       ->capture_default_str();
-  return [options, strain, model] {
+  // what the flags given decide for the rest
+  const auto complete = [options, strain, model] {
     options->strain_given = strain->count() > 0;
     // the neo-Hookean law's cells are exact-bending by default, as in scenes and the Bullet plugin
     // (the paper's cells have zero-energy modes that frictionless supports set free)
     if (model->count() == 0) options->model = options->law == "neo-hookean" ? "exact-bending" : "baudet2007";
-    return run_measure(*options);
   };
+  return {[options, complete] {
+            complete();
+            return plan_measure(*options).status();
+          },
+          [options, complete] {
+            complete();
+            return run_measure(*options);
+          }};
 }
+
+Command add_measure_command(CLI::App& app) { return add_checked_measure_command(app).run; }
 
 }  // namespace cubespring::app

@@ -124,14 +124,13 @@ void print_report(const VoxelizeCommandOptions& options, const TriangleMesh& mes
   }
 }
 
-int run_voxelize(const VoxelizeCommandOptions& options) {
+// The voxelizer's options from the flags, or the message of the first flag at fault (the
+// command line's fuzz target calls this alone: it reads no mesh).
+Result<VoxelizeOptions> plan_voxelize(const VoxelizeCommandOptions& options) {
   VoxelizeOptions voxelize_options;
   if (!options.cell_size.empty()) {
     Result<Eigen::Vector3d> size = parse_sizes("--cell-size", options.cell_size);
-    if (!size) {
-      std::cerr << "error: " << size.message() << "\n";
-      return 2;
-    }
+    if (!size) return size.status();
     voxelize_options.cell_size = *size;
   } else {
     voxelize_options.cells_across = options.cells_across;
@@ -141,6 +140,16 @@ int run_voxelize(const VoxelizeCommandOptions& options) {
   voxelize_options.samples_per_axis = options.samples;
   voxelize_options.drop_islands = options.drop_islands;
   voxelize_options.max_memory_bytes = options.max_memory;
+  return voxelize_options;
+}
+
+int run_voxelize(const VoxelizeCommandOptions& options) {
+  Result<VoxelizeOptions> planned = plan_voxelize(options);
+  if (!planned) {
+    std::cerr << "error: " << planned.message() << "\n";
+    return 2;
+  }
+  const VoxelizeOptions& voxelize_options = planned.value();
 
   LoadOptions load_options;
   load_options.scale = options.scale;
@@ -164,7 +173,7 @@ int run_voxelize(const VoxelizeCommandOptions& options) {
 
 }  // namespace
 
-Command add_voxelize_command(CLI::App& app) {
+CheckedCommand add_checked_voxelize_command(CLI::App& app) {
   auto options = std::make_shared<VoxelizeCommandOptions>();
   CLI::App* cmd = app.add_subcommand("voxelize",
                                      "Turn a surface mesh file into cube cells and report volumes, "
@@ -196,7 +205,9 @@ Command add_voxelize_command(CLI::App& app) {
                   "of this machine's memory)")
       ->check(byte_count());
   cmd->add_flag("--json", options->json, "print one JSON object on stdout");
-  return [options] { return run_voxelize(*options); };
+  return {[options] { return plan_voxelize(*options).status(); }, [options] { return run_voxelize(*options); }};
 }
+
+Command add_voxelize_command(CLI::App& app) { return add_checked_voxelize_command(app).run; }
 
 }  // namespace cubespring::app
