@@ -97,6 +97,9 @@ struct Row {
   // the implicit step with each preconditioner (the default, automatic, chooses one of them), 1 thread
   double jacobi_step = 0, multigrid_step = 0;
   int jacobi_iterations = 0, multigrid_iterations = 0;
+  // the implicit step (automatic preconditioner, 1 thread) of exact-bending cells with the springs
+  // law and with the neo-Hookean law (the scenes' default, whose cells' stiffness is projected)
+  double exact_bending_implicit_step = 0, neo_hookean_implicit_step = 0;
 };
 
 // The positions of a box's nodes in the floor's order (x fastest, then y, then z), whatever
@@ -207,7 +210,9 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
     settings.time_step = 1e-3;
     settings.solver_tolerance = 1e-6;
     State state1 = start, state2 = start, state_jacobi = start, state_multigrid = start;
+    State state_exact = start, state_neo_hookean = start;
     Stepper stepper1(model), stepper2(model), stepper_jacobi(model), stepper_multigrid(model);
+    Stepper stepper_exact(exact.value()), stepper_neo_hookean(neo_hookean.value());
     StepSettings settings2 = settings;
     settings2.threads = 2;
     settings2.adapt_threads = false;  // the column measures 2 threads
@@ -234,7 +239,9 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
            const StepReport report = stepper_multigrid.step(model, clamp, loads, settings_multigrid, state_multigrid);
            iterations_multigrid += report.solver_iterations;
            ++steps_multigrid;
-         }});
+         },
+         [&] { (void)stepper_exact.step(exact.value(), clamp, loads, settings, state_exact); },
+         [&] { (void)stepper_neo_hookean.step(neo_hookean.value(), clamp, loads, settings, state_neo_hookean); }});
     row.implicit_step = implicit_times[0];
     row.implicit_step2 = implicit_times[1];
     row.implicit_iterations = static_cast<int>(iterations / std::max(1L, steps));
@@ -242,6 +249,8 @@ Row bench_body(const std::string& name, LatticeDesc desc, const BenchOptions& o,
     row.jacobi_iterations = static_cast<int>(iterations_jacobi / std::max(1L, steps_jacobi));
     row.multigrid_step = implicit_times[3];
     row.multigrid_iterations = static_cast<int>(iterations_multigrid / std::max(1L, steps_multigrid));
+    row.exact_bending_implicit_step = implicit_times[4];
+    row.neo_hookean_implicit_step = implicit_times[5];
   }
   return row;
 }
@@ -298,7 +307,11 @@ int run_bench(const BenchOptions& o) {
            {"implicit_jacobi_ms", r.jacobi_step > 0 ? nlohmann::json(1e3 * r.jacobi_step) : nlohmann::json()},
            {"implicit_jacobi_cg_iterations", r.jacobi_iterations},
            {"implicit_multigrid_ms", r.multigrid_step > 0 ? nlohmann::json(1e3 * r.multigrid_step) : nlohmann::json()},
-           {"implicit_multigrid_cg_iterations", r.multigrid_iterations}});
+           {"implicit_multigrid_cg_iterations", r.multigrid_iterations},
+           {"exact_bending_implicit_euler_ms",
+            r.exact_bending_implicit_step > 0 ? nlohmann::json(1e3 * r.exact_bending_implicit_step) : nlohmann::json()},
+           {"neo_hookean_implicit_euler_ms",
+            r.neo_hookean_implicit_step > 0 ? nlohmann::json(1e3 * r.neo_hookean_implicit_step) : nlohmann::json()}});
     }
     std::cout << json_text(out) << "\n";
     return 0;
@@ -309,11 +322,11 @@ int run_bench(const BenchOptions& o) {
       kBatches, o.min_seconds / kBatches);
   std::printf(
       "%-12s %8s %9s %9s | %9s %9s %9s %9s %7s %7s %9s %9s | %9s %9s %9s %9s %9s %7s | %9s %7s %9s | %9s %7s | %10s "
-      "%5s %10s %10s %10s %5s %10s %5s\n",
+      "%5s %10s %10s %10s %5s %10s %5s %10s %10s\n",
       "body", "cells", "nodes", "springs", "bare", "grid bare", "symp 1t", "symp 2t", "2t gain", "ceiling", "full/bare",
       "full/grid", "Gspring/s", "grid G/s", "verlet 1t", "verlet 2t", "exact 1t", "exact/pap", "nh 1t", "nh/exact",
       "nh lists", "auto 2t", "auto/1t", "implicit", "CG it", "s/sim s", "impl 2t", "jacobi", "J it", "multigrid",
-      "MG it");
+      "MG it", "exact impl", "nh impl");
   for (const Row& r : rows) {
     char grid_bare[16] = "-", over_grid[16] = "-", grid_rate[16] = "-";
     if (r.grid_bare > 0) {
@@ -330,11 +343,13 @@ int run_bench(const BenchOptions& o) {
         r.exact_bending1 / r.symplectic1, 1e3 * r.neo_hookean1, r.neo_hookean1 / r.exact_bending1,
         1e3 * r.neo_hookean_lists1, 1e3 * r.symplectic_adaptive, r.symplectic_adaptive / r.symplectic1);
     if (r.implicit_step > 0) {
-      std::printf(" %10.3f %5d %10.2f %10.3f %10.3f %5d %10.3f %5d\n", 1e3 * r.implicit_step, r.implicit_iterations,
-                  r.implicit_step / 1e-3, 1e3 * r.implicit_step2, 1e3 * r.jacobi_step, r.jacobi_iterations,
-                  1e3 * r.multigrid_step, r.multigrid_iterations);
+      std::printf(" %10.3f %5d %10.2f %10.3f %10.3f %5d %10.3f %5d %10.3f %10.3f\n", 1e3 * r.implicit_step,
+                  r.implicit_iterations, r.implicit_step / 1e-3, 1e3 * r.implicit_step2, 1e3 * r.jacobi_step,
+                  r.jacobi_iterations, 1e3 * r.multigrid_step, r.multigrid_iterations,
+                  1e3 * r.exact_bending_implicit_step, 1e3 * r.neo_hookean_implicit_step);
     } else {
-      std::printf(" %10s %5s %10s %10s %10s %5s %10s %5s\n", "-", "-", "-", "-", "-", "-", "-", "-");
+      std::printf(" %10s %5s %10s %10s %10s %5s %10s %5s %10s %10s\n", "-", "-", "-", "-", "-", "-", "-", "-", "-",
+                  "-");
     }
   }
   std::printf(
@@ -351,7 +366,8 @@ int run_bench(const BenchOptions& o) {
       "implicit: dt = 1 ms, CG to 1e-6 (CG it: products with the matrix per step), 1 thread; s/sim s: wall\n"
       "seconds per simulated second; verlet 2t, impl 2t: the same steps on 2 threads. The implicit step's CG\n"
       "preconditioner is chosen by the step (automatic: Jacobi until two solves take over 80 iterations, then\n"
-      "the multigrid); jacobi, J it and multigrid, MG it: the same step with each, 1 thread.\n"
+      "the multigrid); jacobi, J it and multigrid, MG it: the same step with each, 1 thread; exact impl, nh impl:\n"
+      "the implicit step (automatic, 1 thread) of exact-bending cells with the springs and the neo-Hookean law.\n"
       "auto 2t: the symplectic step allowed 2 threads as users step (StepSettings::adapt_threads: it takes 1\n"
       "while 1 is measured faster), auto/1t its time over symp 1t; the other columns take the threads they\n"
       "name. With --busy N, N threads spin beside the bench throughout (a loaded machine).\n");
