@@ -62,7 +62,7 @@ for target in ${targets[@]}; do
     echo "fuzzing $target for $seconds s"
   fi
   if [ "$target" = cli ]; then
-    # arguments one a line: a command line is short
+    # arguments ended by NUL bytes: a command line is short
     (cd build/fuzz && ./fuzz_cli "corpus_$target" "${length[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=1024 \
       -dict=../../tests/fuzz/cli.dict)
     continue

@@ -16,7 +16,7 @@ namespace cubespring::app {
 /// Adds a subcommand to the app; the returned function runs it after parsing and gives the exit code.
 using Command = std::function<int()>;
 /// A subcommand in two stages: `check` reads the parsed flags as the command does before it
-/// starts its work (reads no mesh, runs no experiment) and gives the message of the first one at
+/// starts its work (it reads no file and runs nothing) and gives the message of the first one at
 /// fault, which `run` prints after "error: " with exit 2; `run` does the whole, the check
 /// included. The command line's fuzz target (tests/fuzz/fuzz_cli.cpp) calls `check` alone.
 struct CheckedCommand {

@@ -21,6 +21,7 @@
 #include "cubespring/validation/experiments.h"
 #include "cubespring/validation/fem_comparison.h"
 #include "json_output.h"
+#include "message_text.h"
 #include "number_checks.h"
 #ifdef CUBESPRING_HAS_RENDER
 #include "cantilever_picture.h"
@@ -305,14 +306,23 @@ void announce_long_solves(ExperimentSettings& settings) {
                cells.x(), cells.y(), cells.z(), cost.peak_bytes / 1e9, seconds, cost.operations);
 }
 
-// What the flags ask for, checked as far as they can be before the experiment starts: the
-// experiment, its settings and its finite-element reference, or the message of the first flag
-// at fault (printed after "error: ", exit 2). The command line's fuzz target calls it alone.
+// What the flags ask for, checked as far as they can be before the experiment starts and
+// before any file is read: the experiment and its settings, or the message of the first flag at
+// fault (printed after "error: ", exit 2). The command line's fuzz target calls it alone.
 struct MeasurePlan {
   Experiment experiment = Experiment::kElongation;
   ExperimentSettings settings;
-  std::optional<FemSolution> reference;
 };
+
+// The finite-element reference named by --reference, or its reader's message with the file's
+// name shown short (message_text.h) as every argument is.
+Result<FemSolution> read_reference(const std::string& path) {
+  Result<FemSolution> read = read_calculix_frd(path);
+  if (read) return read;
+  std::string message = read.message();
+  if (message.rfind(path, 0) == 0) message = shown_argument(path) + message.substr(path.size());
+  return Status::error("--reference: " + message);
+}
 
 Result<MeasurePlan> plan_measure(const MeasureOptions& o) {
   Result<Experiment> experiment = parse_experiment(o.experiment);
@@ -355,11 +365,6 @@ Result<MeasurePlan> plan_measure(const MeasureOptions& o) {
     return Status::error(std::string(o.png.empty() ? "--reference" : "--png") +
                          ": only the cantilever has a picture and a finite-element reference, not " + o.experiment);
   }
-  if (!o.reference.empty()) {
-    Result<FemSolution> read = read_calculix_frd(o.reference);
-    if (!read) return Status::error("--reference: " + read.message());
-    plan.reference = std::move(read).value();
-  }
   settings.max_memory_bytes = o.max_memory;
   if (Status checked = check_experiment(chosen, settings); !checked) {
     const bool memory = checked.message().find("memory limit") != std::string::npos;
@@ -377,7 +382,15 @@ int run_measure(const MeasureOptions& o) {
   }
   MeasurePlan& plan = planned.value();
   ExperimentSettings& settings = plan.settings;
-  std::optional<FemSolution>& reference = plan.reference;
+  std::optional<FemSolution> reference;
+  if (!o.reference.empty()) {
+    Result<FemSolution> read = read_reference(o.reference);
+    if (!read) {
+      std::cerr << "error: " << read.message() << "\n";
+      return 2;
+    }
+    reference = std::move(read).value();
+  }
   announce_long_solves(settings);
   Result<ExperimentResult> result = run_experiment(plan.experiment, settings);
   if (!result) {

@@ -50,7 +50,7 @@ CUBESPRING_VECTOR_CLONES BlockResult thickness_squares(const Model& model, const
   int flat = 0;
 #pragma omp simd reduction(| : flat)
   for (int i = 0; i < count; ++i) {
-    double m[3][3];  // 4 x the mean edge vectors (the factor cancels in the ratios below)
+    double m[3][3];  // 4 x the mean edge vectors (the 1/256 and the 16 below take the factor out)
     for (int c = 0; c < 3; ++c) {
       const double p0 = x[3 * nodes[i][0] + c], p1 = x[3 * nodes[i][1] + c], p2 = x[3 * nodes[i][2] + c];
       const double p3 = x[3 * nodes[i][3] + c], p4 = x[3 * nodes[i][4] + c], p5 = x[3 * nodes[i][5] + c];

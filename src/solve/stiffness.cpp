@@ -3,7 +3,10 @@
 // Hessian of the elastic energy (docs/model-baudet2007.md section 6):
 //   spring s:   k n n^T + (t / l)(I - n n^T), t the total tension including the correction;
 //   correction: V0 sum_ab D_ab g_a g_b^T with g_a = d(eps_a)/dx;
-//   inversion:  k_inv / V0 grad V grad V^T + k_inv (V / V0 - phi) hess V, for crushed cells.
+//   inversion:  k_inv / V0 grad V grad V^T + k_inv (V / V0 - phi) hess V, for crushed cells;
+//   the exact-bending twist (docs/model-exact-bending.md section 3) and the neo-Hookean cell term
+//   (docs/model-neo-hookean.md section 4). A cell's terms add into its 8 x 8 corner blocks, which
+//   go into the matrix once.
 #include "cubespring/stiffness.h"
 
 #include <algorithm>
@@ -391,7 +394,7 @@ void StiffnessAssembler::add_rows(const Model& model, const Eigen::Matrix3Xd& x,
     add_block(matrix, rows, j, spring_position_[s][1], -block);
   }
 
-  // cells: correction material part and inversion recovery; those that reach the rows have their
+  // cells: their correction, neo-Hookean, twist and inversion terms; those that reach the rows have their
   // corner 0 (their lowest node: cells come in node order) at most cell_span_ nodes before them
   const double rest_volume = model.rest_cell_volume();
   const auto corner_0_below = [&](int node) {

@@ -2,10 +2,11 @@
 // SPDX-License-Identifier: MIT
 // libFuzzer target: the command line of `cubespring measure` and `voxelize`, as main.cpp
 // builds it (`run`'s flags are CLI11's ranges alone; its scene is fuzz_scene's). The input is
-// the arguments, one a line; they are parsed, and the chosen command's check stage (commands.h:
-// what it reads of its flags before it starts its work) runs alone. Beyond crashes, hangs and
-// sanitizer faults, it stops on a broken message rule: an error is one line (two at most), not
-// an echo of the input, and a check's error names the flag at fault. scripts/fuzz.sh runs it.
+// the arguments, each ended by a NUL byte (as argv's are, so that an argument may hold a line
+// break); they are parsed, and the chosen command's check stage (commands.h: what it reads of its
+// flags before it starts its work, no file) runs alone. Beyond crashes, hangs and sanitizer
+// faults, it stops on a broken message rule: an error is at most two lines and 600 characters
+// (an argument echoed whole breaks it), and a check's error names a flag. scripts/fuzz.sh runs it.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -36,7 +37,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<std::string> arguments{"cubespring"};
   std::string current;
   for (std::size_t i = 0; i < size; ++i) {
-    if (data[i] == '\n') {
+    if (data[i] == '\0') {
       arguments.push_back(current);
       current.clear();
     } else {
