@@ -123,12 +123,11 @@ std::vector<ContactBox> ContactProjector::contact_boxes(const std::vector<RigidT
     btVector3 high;
     shape.getAabb(track.transform, low, high);
     // a round tool's triangles are looked for a cell beyond its radius (which its box holds); other
-    // shapes' vertices as far as penetration_push() finds them, and the faces a tool reaches
-    // through half a cell
+    // shapes' vertices as far as penetration_push() finds them, and the faces a tool (or a box's
+    // edge) reaches through half a cell
     double beyond = reach.offset + cell;
     if (!round_core(shape, track.transform)) {
-      beyond = push_reach_beyond_bounds(shape, reach);
-      if (body_.contact_.face_contacts) beyond = std::max(beyond, reach.offset + kFaceContactDepthCells * cell);
+      beyond = std::max(push_reach_beyond_bounds(shape, reach), reach.offset + kFaceContactDepthCells * cell);
     }
     boxes.push_back({track.object, Eigen::AlignedBox3d(to_eigen(low), to_eigen(high)), beyond});
   }
@@ -166,7 +165,6 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   for (auto& [object, last] : last_cores_) last.seen = false;
   for (RigidTrack& track : tracks) {
     const btCollisionShape& shape = *track.object->getCollisionShape();
-    const bool uses_normals = push_uses_surface_normal(shape);
     btVector3 low;
     btVector3 high;
     shape.getAabb(track.transform, low, high);
@@ -187,22 +185,23 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       continue;
     }
     points_.clear();
-    for (const int v : window_.vertices()) {
+    for (const int v : window_.vertices_near(track.object)) {
       const Eigen::Vector3d x = body_.surface_positions_.col(v);
       if ((x.array() < vertex_lower).any() || (x.array() > vertex_upper).any()) continue;
       if (!held.empty() && held[static_cast<std::size_t>(v)]) continue;
       // the tissue's outward normal tells a rigid edge's faces apart
-      const Eigen::Vector3d normal =
-          uses_normals ? vertex_normal(*body_.surface_topology_, body_.surface_positions_, body_.surface_triangles_, v)
-                       : Eigen::Vector3d::Zero();
-      const std::optional<Eigen::Vector3d> push = penetration_push(shape, track.transform, x, normal, reach);
+      const auto normal_at_v = [&] {
+        return vertex_normal(*body_.surface_topology_, body_.surface_positions_, body_.surface_triangles_, v);
+      };
+      const std::optional<Eigen::Vector3d> push =
+          penetration_push(shape, track.transform, x, SurfaceNormal::when_asked(normal_at_v), reach);
       if (!push || push->squaredNorm() == 0.0) continue;
       add_vertex_point(v, *push);
       touched[static_cast<std::size_t>(v)] = 1;
     }
     LastImpulses& last = last_impulses_[track.object];
     last.seen = true;
-    last.by_key.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), Eigen::Vector3d::Zero());
+    last.resize(static_cast<std::size_t>(body_.surface_positions_.cols()));
     solve_points(track, 0, true, &last);
     refresh_moved();
     const std::size_t vertex_points = points_.size();
@@ -212,8 +211,6 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     // probe turned a cell inside out); the vertex contacts hold such a tool
     ContactReach face_reach = reach;
     face_reach.thickness = std::min(reach.thickness, kFaceContactDepthCells * body_.model_.cell_size.maxCoeff());
-    const Eigen::Array3d face_lower = to_eigen(low).array() - (face_reach.thickness + reach.offset);
-    const Eigen::Array3d face_upper = to_eigen(high).array() + (face_reach.thickness + reach.offset);
     resolve_box_edges(track, face_reach.thickness, held);  // its impulses settle with the vertices'
     remember(last, 0, vertex_points);
     points_.clear();
@@ -221,16 +218,15 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     if (!body_.contact_.face_contacts) continue;
     // then tool tips reaching through a triangle between its corners (a triangle whose corners
     // already met this body is held by them)
-    points_.clear();
-    for (const int t : window_.triangles()) {
+    const Eigen::AlignedBox3d face_region = face_test_region(track, face_reach);
+    if (face_region.isEmpty()) continue;
+    for (const int t : window_.triangles_near(track.object)) {
       if (any_corner(touched, body_.surface_triangles_, t)) continue;
       if (any_corner(held, body_.surface_triangles_, t)) continue;  // a point of it would move held nodes too
       const Eigen::Vector3d a = body_.surface_positions_.col(body_.surface_triangles_(0, t));
       const Eigen::Vector3d b = body_.surface_positions_.col(body_.surface_triangles_(1, t));
       const Eigen::Vector3d c = body_.surface_positions_.col(body_.surface_triangles_(2, t));
-      const Eigen::Array3d tri_low = a.cwiseMin(b).cwiseMin(c).array();
-      const Eigen::Array3d tri_high = a.cwiseMax(b).cwiseMax(c).array();
-      if ((tri_high < face_lower).any() || (tri_low > face_upper).any()) continue;
+      if (!face_region.intersects(Eigen::AlignedBox3d(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c)))) continue;
       const std::optional<FacePenetration> through = face_penetration(shape, track.transform, a, b, c, face_reach);
       if (!through) continue;
       const Eigen::Vector3d normal = (b - a).cross(c - a).normalized();
@@ -244,6 +240,29 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   drop_unseen(last_cores_);
 }
 
+Eigen::AlignedBox3d ContactProjector::face_test_region(const RigidTrack& track, const ContactReach& face_reach) const {
+  const btCollisionShape& shape = *track.object->getCollisionShape();
+  const double reach = face_reach.thickness + face_reach.offset;
+  const std::optional<std::vector<Eigen::Vector3d>> points = face_penetration_points(shape, track.transform);
+  Eigen::AlignedBox3d region;
+  if (!points) {
+    btVector3 low;
+    btVector3 high;
+    shape.getAabb(track.transform, low, high);
+    region.extend(to_eigen(low)).extend(to_eigen(high));
+    region.min().array() -= reach;
+    region.max().array() += reach;
+    return region;
+  }
+  Eigen::AlignedBox3d surface;
+  for (const int v : window_.vertices_near(track.object)) surface.extend(body_.surface_positions_.col(v));
+  for (const Eigen::Vector3d& point : *points) {
+    const Eigen::AlignedBox3d around(point.array() - reach, point.array() + reach);
+    if (around.intersects(surface)) region.extend(around);
+  }
+  return region;
+}
+
 void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held) {
   const std::vector<RigidEdge> edges =
       box_edges(*track.object->getCollisionShape(), track.transform, body_.contact_.offset);
@@ -251,7 +270,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
   // each edge meets only the triangles near it, and most edges none: a table's lie far from an
   // organ lying on it
   Eigen::AlignedBox3d surface;
-  for (const int v : window_.vertices()) surface.extend(body_.surface_positions_.col(v));
+  for (const int v : window_.vertices_near(track.object)) surface.extend(body_.surface_positions_.col(v));
   std::vector<RigidEdge> near_edges;
   std::vector<Eigen::AlignedBox3d> near_edge;
   Eigen::AlignedBox3d near_any;
@@ -266,7 +285,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
   }
   if (near_edges.empty()) return;
   const std::size_t from = points_.size();  // after the vertex points against the same body
-  for (const int t : window_.triangles()) {
+  for (const int t : window_.triangles_near(track.object)) {
     const auto corner = [&](int k) { return static_cast<std::size_t>(body_.surface_triangles_(k, t)); };
     const Eigen::Vector3d a = body_.surface_positions_.col(static_cast<Eigen::Index>(corner(0)));
     const Eigen::Vector3d b = body_.surface_positions_.col(static_cast<Eigen::Index>(corner(1)));
@@ -290,7 +309,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
   // trembling (kinetic energy 2e-4 J after 5 s; 1.6e-5 J with the warm start)
   LastImpulses& last = last_edge_impulses_[track.object];
   last.seen = true;
-  last.by_key.resize(static_cast<std::size_t>(body_.surface_triangles_.cols()), Eigen::Vector3d::Zero());
+  last.resize(static_cast<std::size_t>(body_.surface_triangles_.cols()));
   solve_points(track, from, true, &last);
   remember(last, from, points_.size());
   refresh_moved();
@@ -299,8 +318,9 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
 void ContactProjector::resolve_round_tool(RigidTrack& track, const RoundCore& core, const std::vector<char>& held) {
   const double cell = body_.model_.cell_size.maxCoeff();
   const double reach = core.radius + body_.contact_.offset;
-  const std::vector<int> near = outer_triangles_near(core, body_.surface_positions_, body_.surface_triangles_,
-                                                     *body_.surface_topology_, reach + cell, &window_.triangles());
+  const std::vector<int> near =
+      outer_triangles_near(core, body_.surface_positions_, body_.surface_triangles_, *body_.surface_topology_,
+                           reach + cell, &window_.triangles_near(track.object));
   // a pass's points are found where the surface was, and it bends as they move it (a tool thinner
   // than a cell touches the surface within one cell from several sides): passes are repeated,
   // each from where the last left the surface, until every point is within the tolerance
@@ -373,7 +393,7 @@ double ContactProjector::penetration(const RigidTrack& track) const {
     const Eigen::Vector3d x = body.surface_positions_.col(v);
     if ((x.array() < lower).any() || (x.array() > upper).any()) continue;
     if (const std::optional<Eigen::Vector3d> push =
-            penetration_push(shape, track.transform, x, Eigen::Vector3d::Zero(), reach)) {
+            penetration_push(shape, track.transform, x, SurfaceNormal(Eigen::Vector3d::Zero()), reach)) {
       deepest = std::max(deepest, push->norm());
     }
   }
@@ -434,7 +454,11 @@ void ContactProjector::add_vertex(ContactPoint& point, int vertex, double scale)
     if (same != end) {
       same->weight += weight;
     } else {
-      point_nodes_.push_back({node, weight, 0.0});
+      // written field by field: a pushed temporary was stored in parts and read back whole, which
+      // stalled (a fifth of the contact points' set-up)
+      PointNode& entry = point_nodes_.emplace_back();
+      entry.node = node;
+      entry.weight = weight;
     }
   }
   point.end_node = static_cast<int>(point_nodes_.size());
@@ -462,7 +486,7 @@ void ContactProjector::apply_points(RigidTrack& track, bool count, LastImpulses*
 void ContactProjector::solve_points(RigidTrack& track, std::size_t from, bool count, const LastImpulses* last) {
   if (from == points_.size()) return;
   prepare_points(track, count, from);
-  project_positions(from);
+  project_positions(from, last);
   resolve_impulses(track, last, from);
   if (from > 0) resolve_impulses(track, nullptr, 0);
 }
@@ -490,22 +514,36 @@ void ContactProjector::move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& f
   }
 }
 
+void ContactProjector::move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change,
+                                  Eigen::Matrix3Xd& second_field, const Eigen::Vector3d& second_change) const {
+  for (int e = point.first_node; e < point.end_node; ++e) {
+    const PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
+    if (entry.share_per_mass == 0.0) continue;
+    field.col(entry.node) += entry.share_per_mass * change;
+    second_field.col(entry.node) += entry.share_per_mass * second_change;
+  }
+}
+
 void ContactProjector::prepare_points(RigidTrack& track, bool count, std::size_t from) {
+  const Eigen::VectorXd& inertia = body_.model_.inertia();
   for (std::size_t i = from; i < points_.size(); ++i) {
     ContactPoint& point = points_[i];
-    point.inverse_mass = 0.0;
-    point.share = 0.0;
+    double inverse_mass = 0.0;  // summed in locals: the calls below may write any memory
+    double share = 0.0;
     for (int e = point.first_node; e < point.end_node; ++e) {
       PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
       const int node = entry.node;
       const double w = entry.weight;
       entry.share_per_mass = 0.0;
       if (!movable(node, w)) continue;
-      entry.share_per_mass = w / body_.model_.inertia()[node];
-      point.inverse_mass += w * w / body_.model_.inertia()[node];
-      point.share += w;
+      const double per_mass = w / inertia[node];  // one division a node
+      entry.share_per_mass = per_mass;
+      inverse_mass += w * per_mass;
+      share += w;
       body_.mark_moved(node);
     }
+    point.inverse_mass = inverse_mass;
+    point.share = share;
     point.contact = at_point(point, body_.state_.positions) + point.push;
     point.normal = point.push.normalized();
     point.lift = 0.0;
@@ -514,9 +552,17 @@ void ContactProjector::prepare_points(RigidTrack& track, bool count, std::size_t
   }
 }
 
-void ContactProjector::project_positions(std::size_t from) {
+void ContactProjector::project_positions(std::size_t from, const LastImpulses* last) {
   Eigen::Matrix3Xd& x = body_.state_.positions;
   const double tolerance = kSweepTolerance * body_.model_.cell_size.minCoeff();
+  if (last != nullptr) {
+    for (std::size_t i = from; i < points_.size(); ++i) {
+      ContactPoint& point = points_[i];
+      if (point.inverse_mass <= 0.0 || point.key < 0) continue;
+      point.lift = last->lift_by_key[static_cast<std::size_t>(point.key)];
+      move_nodes(point, x, point.lift * point.normal);
+    }
+  }
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
     double largest = 0.0;
     for (std::size_t i = from; i < points_.size(); ++i) {
@@ -540,10 +586,12 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
   };
   // each impulse has the form the sweeps give: normal part >= 0, tangential within Coulomb's disc
   const auto admissible = [&](const Eigen::Vector3d& impulse, const Eigen::Vector3d& n) {
-    const double normal = std::max(impulse.dot(n), 0.0);
-    Eigen::Vector3d tangential = impulse - impulse.dot(n) * n;
+    const double along = impulse.dot(n);
+    const double normal = std::max(along, 0.0);
+    Eigen::Vector3d tangential = impulse - along * n;
     const double limit = body_.contact_.friction * normal;
-    if (tangential.norm() > limit) tangential *= limit / tangential.norm();
+    const double squared = tangential.squaredNorm();  // a square root only where the disc clips it
+    if (squared > limit * limit) tangential *= limit / std::sqrt(squared);
     return Eigen::Vector3d(normal * n + tangential);
   };
   // an impulse's change at a point: its nodes take it, the rigid body the momentum they took.
@@ -556,8 +604,11 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
   const double dt = body_.step_settings_.time_step;  // this sub-step's
   const auto deliver = [&](ContactPoint& point, const Eigen::Vector3d& impulse) {
     const Eigen::Vector3d change = impulse - point.impulse;
-    move_nodes(point, v, change);
-    if (!track.dynamic) move_nodes(point, x, dt * (change - change.dot(point.normal) * point.normal));
+    if (track.dynamic) {
+      move_nodes(point, v, change);
+    } else {
+      move_nodes(point, v, change, x, dt * (change - change.dot(point.normal) * point.normal));
+    }
     track.receive(-point.share * change, point.contact, false);
     point.impulse = impulse;
     return change;
@@ -571,7 +622,7 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
   }
   const double tolerance = kSweepTolerance * body_.model_.cell_size.minCoeff() / body_.sub_step_;
   for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
-    double largest = 0.0;
+    double largest = 0.0;  // squared
     for (std::size_t i = from; i < points_.size(); ++i) {
       ContactPoint& point = points_[i];
       if (point.inverse_mass <= 0.0) continue;
@@ -582,24 +633,36 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
       Eigen::Vector3d impulse = point.impulse + (normal_after - normal_before) * n;
       // friction: the tangential impulse that stops the sliding left, within mu times the normal one
       const Eigen::Vector3d sliding = relative - relative.dot(n) * n;
-      const double speed = sliding.norm();
-      if (speed > 0.0) {
+      if (!track.dynamic) {
+        impulse -= sliding / point.inverse_mass;  // a static or kinematic body adds no inverse mass
+      } else if (const double speed = sliding.norm(); speed > 0.0) {
         const Eigen::Vector3d direction = sliding / speed;
         impulse -= speed / effective(point, direction) * direction;
       }
-      largest = std::max(largest, deliver(point, admissible(impulse, n)).norm() * point.inverse_mass);
+      const double changed =
+          deliver(point, admissible(impulse, n)).squaredNorm() * point.inverse_mass * point.inverse_mass;
+      largest = std::max(largest, changed);
     }
-    if (largest < tolerance) break;
+    if (largest < tolerance * tolerance) break;
   }
 }
 
+void ContactProjector::LastImpulses::resize(std::size_t size) {
+  by_key.resize(size, Eigen::Vector3d::Zero());
+  lift_by_key.resize(size, 0.0);
+}
+
 void ContactProjector::remember(LastImpulses& last, std::size_t from, std::size_t to) const {
-  for (const int key : last.keys) last.by_key[static_cast<std::size_t>(key)].setZero();
+  for (const int key : last.keys) {
+    last.by_key[static_cast<std::size_t>(key)].setZero();
+    last.lift_by_key[static_cast<std::size_t>(key)] = 0.0;
+  }
   last.keys.clear();
   for (std::size_t i = from; i < to; ++i) {
     const ContactPoint& point = points_[i];
-    if (point.key < 0 || point.impulse.isZero()) continue;
+    if (point.key < 0 || (point.impulse.isZero() && point.lift == 0.0)) continue;
     last.by_key[static_cast<std::size_t>(point.key)] = point.impulse;
+    last.lift_by_key[static_cast<std::size_t>(point.key)] = point.lift;
     last.keys.push_back(point.key);
   }
 }

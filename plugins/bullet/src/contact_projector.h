@@ -67,6 +67,10 @@ class ContactProjector {
   // The rigid body's box edges pushed out of the triangles they reach through between corners
   // that the vertex contacts left on the box's faces, less than `thickness` behind them.
   void resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held);
+  // Where a triangle must reach to be tested for face contacts with the track's shape: around the
+  // points of it that can reach through a triangle (face_penetration_points) that are near the
+  // window, or its bounding box, grown by the face contacts' depth and offset. Empty: none.
+  Eigen::AlignedBox3d face_test_region(const RigidTrack& track, const ContactReach& face_reach) const;
   void add_vertex_point(int vertex, const Eigen::Vector3d& push);
   void add_face_point(int triangle, const Eigen::Vector3d& barycentric, const Eigen::Vector3d& push);
   ContactPoint& new_point(const Eigen::Vector3d& push);
@@ -74,10 +78,14 @@ class ContactProjector {
   // The impulses a rigid body's vertex points (or box-edge points) took in the last sub-step, by
   // their key (surface vertex, or triangle): each starts the next sub-step's sweeps from it (warm
   // start), as a resting contact needs about the same impulse every sub-step.
+  // The projection's multipliers (lifts) are kept the same way: a resting contact is pressed in
+  // by about the same depth every sub-step, and from zero the sweeps never reached their tolerance.
   struct LastImpulses {
     std::vector<Eigen::Vector3d> by_key;  // [N s], zero where no point was
-    std::vector<int> keys;                // where it is not zero
+    std::vector<double> lift_by_key;      // [kg m], zero where no point was
+    std::vector<int> keys;                // where either is not zero
     bool seen = false;                    // in the current resolve()
+    void resize(std::size_t size);
   };
   // count: whether the points count as contacts of the sub-step (RigidTrack::substep_contacts);
   // last: the track's impulses of the last sub-step, for vertex points
@@ -90,13 +98,16 @@ class ContactProjector {
   // The parts of a pass, on the points from `from` on: each point's inverse mass, contact point
   // and normal; the positions' sweeps; the velocities' sweeps, started from `last`.
   void prepare_points(RigidTrack& track, bool count, std::size_t from);
-  void project_positions(std::size_t from);
+  void project_positions(std::size_t from, const LastImpulses* last);
   void resolve_impulses(RigidTrack& track, const LastImpulses* last, std::size_t from);
   bool movable(int node, double weight) const;
   // A point's weighted sum of a per-node field (positions, velocities), and a change of it given
   // to the point's movable nodes as a mass-weighted share of `change` (a move times W, an impulse).
   Eigen::Vector3d at_point(const ContactPoint& point, const Eigen::Matrix3Xd& field) const;
   void move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change) const;
+  // Two fields in one pass over the point's nodes (velocities and positions).
+  void move_nodes(const ContactPoint& point, Eigen::Matrix3Xd& field, const Eigen::Vector3d& change,
+                  Eigen::Matrix3Xd& second_field, const Eigen::Vector3d& second_change) const;
 
   // Where a round tool's core was at the end of the last sub-step, whether it was outside the
   // tissue then, and how far the surface was from it when last measured: an inside verdict deeper

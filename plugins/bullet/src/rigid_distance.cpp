@@ -50,12 +50,18 @@ struct Exit {
 // the surface crumpled around it, was thrown out through the box's side, two cells away).
 // The exits are [first, last): a box's six fit on the stack (a vector's allocation, once per
 // vertex near a box and sub-step, cost more than the test).
-Eigen::Vector3d push_through(const Exit* first, const Exit* last, const Eigen::Vector3d& surface_normal,
-                             double max_detour) {
+// `surface_normal` is the tissue's, in the shape's frame: asked for only when a second face is
+// within the detour.
+template <class LocalNormal>
+Eigen::Vector3d push_through(const Exit* first, const Exit* last, const LocalNormal& local_normal, double max_detour) {
   const Exit* shortest = first;
   for (const Exit* exit = first; exit != last; ++exit) {
     if (exit->room < shortest->room) shortest = exit;
   }
+  int near_faces = 0;
+  for (const Exit* exit = first; exit != last; ++exit) near_faces += exit->room <= shortest->room + max_detour ? 1 : 0;
+  if (near_faces < 2) return shortest->room * shortest->normal;
+  const Eigen::Vector3d surface_normal = local_normal();
   const Exit* pressed = nullptr;
   double pressed_reach = std::numeric_limits<double>::infinity();
   for (const Exit* exit_at = first; exit_at != last; ++exit_at) {
@@ -71,8 +77,9 @@ Eigen::Vector3d push_through(const Exit* first, const Exit* last, const Eigen::V
 }
 
 // Out of a box centred at the origin (local frame), or nothing when outside.
+template <class LocalNormal>
 std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen::Vector3d& p,
-                                        const Eigen::Vector3d& surface_normal, double max_detour) {
+                                        const LocalNormal& surface_normal, double max_detour) {
   const Eigen::Vector3d room = half - p.cwiseAbs();
   if ((room.array() <= 0.0).any()) return std::nullopt;
   std::array<Exit, 6> exits;
@@ -87,8 +94,9 @@ std::optional<Eigen::Vector3d> box_push(const Eigen::Vector3d& half, const Eigen
 }
 
 // A cylinder about an axis: out through an end or the side, whose face here is its tangent plane.
+template <class LocalNormal>
 std::optional<Eigen::Vector3d> cylinder_push(double radius, double half_height, int axis, const Eigen::Vector3d& p,
-                                             const Eigen::Vector3d& surface_normal, double max_detour) {
+                                             const LocalNormal& surface_normal, double max_detour) {
   Eigen::Vector3d radial = p;
   radial[axis] = 0.0;
   const double r = radial.norm();
@@ -118,8 +126,9 @@ std::optional<Eigen::Vector3d> capsule_push(double radius, double half_height, i
 // points. Hulls are asked once per vertex and sub-step: their planes are kept per shape, per
 // thread, and rebuilt when the shape no longer has the support points it had (changed, or
 // another shape at the same address).
+template <class LocalNormal>
 std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen::Vector3d& p,
-                                         const Eigen::Vector3d& surface_normal, double offset, double max_detour) {
+                                         const LocalNormal& surface_normal, double offset, double max_detour) {
   struct Entry {
     Eigen::Matrix3d fingerprint = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
     std::vector<Eigen::Vector4d> planes;
@@ -156,13 +165,13 @@ std::optional<Eigen::Vector3d> hull_push(const btConvexShape& shape, const Eigen
 
 // Each shape's own test on its dimensions grown by the offset.
 std::optional<Eigen::Vector3d> convex_push(const btConvexShape& convex, const btTransform& transform,
-                                           const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
+                                           const Eigen::Vector3d& point, const SurfaceNormal& surface_normal,
                                            const ContactReach& reach) {
   const double offset = reach.offset;
   // exact inside tests in the shape's frame: Bullet's GJK signed distance is unreliable for
   // points deep inside a shape, which is where a projection needs it most
   const Eigen::Vector3d p = to_eigen(transform.invXform(to_bt(point)));
-  const Eigen::Vector3d n = to_eigen(transform.getBasis().transpose() * to_bt(surface_normal));
+  const auto n = [&] { return to_eigen(transform.getBasis().transpose() * to_bt(surface_normal.get())); };
   std::optional<Eigen::Vector3d> push;
   switch (convex.getShapeType()) {
     case SPHERE_SHAPE_PROXYTYPE:
@@ -294,20 +303,8 @@ double push_reach_beyond_bounds(const btCollisionShape& shape, const ContactReac
   return shape.isConvex() ? reach.offset : reach.offset + reach.thickness;
 }
 
-bool push_uses_surface_normal(const btCollisionShape& shape) {
-  if (shape.isCompound()) {
-    const auto& compound = static_cast<const btCompoundShape&>(shape);
-    for (int child = 0; child < compound.getNumChildShapes(); ++child) {
-      if (push_uses_surface_normal(*compound.getChildShape(child))) return true;
-    }
-    return false;
-  }
-  if (!shape.isConvex()) return false;  // planes and triangle meshes
-  return shape.getShapeType() != SPHERE_SHAPE_PROXYTYPE && shape.getShapeType() != CAPSULE_SHAPE_PROXYTYPE;
-}
-
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
-                                                const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
+                                                const Eigen::Vector3d& point, const SurfaceNormal& surface_normal,
                                                 const ContactReach& reach) {
   if (shape.getShapeType() == STATIC_PLANE_PROXYTYPE) {
     return plane_push(static_cast<const btStaticPlaneShape&>(shape), transform, point, reach);
@@ -360,6 +357,20 @@ std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, c
   const Eigen::Vector3d barycentric = barycentric_in_plane(foot, a, b, c, normal, twice_area);
   if ((barycentric.array() < 0.0).any()) return std::nullopt;
   return FacePenetration{barycentric, depth};
+}
+
+std::optional<std::vector<Eigen::Vector3d>> face_penetration_points(const btCollisionShape& shape,
+                                                                    const btTransform& transform) {
+  if (shape.getShapeType() != BOX_SHAPE_PROXYTYPE) return std::nullopt;
+  // a box's support point is always one of its corners
+  const Eigen::Vector3d half = to_eigen(static_cast<const btBoxShape&>(shape).getHalfExtentsWithMargin());
+  std::vector<Eigen::Vector3d> corners;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Eigen::Vector3d local((corner & 1) != 0 ? half.x() : -half.x(), (corner & 2) != 0 ? half.y() : -half.y(),
+                                (corner & 4) != 0 ? half.z() : -half.z());
+    corners.push_back(to_eigen(transform * to_bt(local)));
+  }
+  return corners;
 }
 
 std::vector<RigidEdge> box_edges(const btCollisionShape& shape, const btTransform& transform, double offset) {

@@ -24,6 +24,37 @@ struct ContactReach {
   double detour = 0.0;
 };
 
+/// The tissue's outward unit normal at the point penetration_push() tests, worked out only when
+/// asked for: a flat-faced shape needs it only where two of its faces are about equally near (at
+/// an edge), and working it out for every vertex resting on a table took longer than the test.
+class SurfaceNormal {
+ public:
+  /// A normal known beforehand (zero: unknown, then the nearest face is taken).
+  SurfaceNormal(const Eigen::Vector3d& normal) : normal_(normal) {}  // NOLINT(google-explicit-constructor)
+
+  /// A normal worked out by `compute()` when first asked for; `compute` must outlive the result.
+  template <class Compute>
+  static SurfaceNormal when_asked(const Compute& compute) {
+    SurfaceNormal normal(Eigen::Vector3d::Zero());
+    normal.context_ = &compute;
+    normal.compute_ = [](const void* context) -> Eigen::Vector3d { return (*static_cast<const Compute*>(context))(); };
+    return normal;
+  }
+
+  const Eigen::Vector3d& get() const {
+    if (compute_ != nullptr) {
+      normal_ = compute_(context_);
+      compute_ = nullptr;
+    }
+    return normal_;
+  }
+
+ private:
+  mutable Eigen::Vector3d normal_;
+  const void* context_ = nullptr;
+  mutable Eigen::Vector3d (*compute_)(const void*) = nullptr;
+};
+
 /// The move [m] from `point` to the nearest point of the shape's surface, grown by reach.offset,
 /// when the point is inside it (or on it: the move is then zero); nothing when it is clear of the
 /// shape. For flat-faced shapes (boxes,
@@ -37,17 +68,13 @@ struct ContactReach {
 /// face (a grown box keeps its sharp corners); every other convex shape (cones, multi-spheres,
 /// scaled or user shapes) against the hull of its support points (hull_planes.h).
 std::optional<Eigen::Vector3d> penetration_push(const btCollisionShape& shape, const btTransform& transform,
-                                                const Eigen::Vector3d& point, const Eigen::Vector3d& surface_normal,
+                                                const Eigen::Vector3d& point, const SurfaceNormal& surface_normal,
                                                 const ContactReach& reach);
 
 /// How far outside the shape's bounding box (Bullet's getAabb) penetration_push() may still find
 /// a point inside [m]: reach.offset for solid shapes, and reach.thickness more where a part is
 /// one-sided (a triangle mesh, a plane), whose inside lies behind its triangles.
 double push_reach_beyond_bounds(const btCollisionShape& shape, const ContactReach& reach);
-
-/// Whether penetration_push() looks at `surface_normal` for this shape: only flat-faced convex
-/// shapes (boxes, cylinders, hulls and the hulls of other convex shapes) and compounds with one.
-bool push_uses_surface_normal(const btCollisionShape& shape);
 
 /// A convex part of a rigid shape reaching through a surface triangle from outside: the point of
 /// the shape deepest behind the triangle's plane lies over the triangle. Vertex tests alone would
@@ -63,6 +90,13 @@ struct FacePenetration {
 std::optional<FacePenetration> face_penetration(const btCollisionShape& shape, const btTransform& transform,
                                                 const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                                                 const Eigen::Vector3d& c, const ContactReach& reach);
+
+/// The points of a shape that face_penetration() can find reaching through a triangle, when they
+/// are few: a box's 8 corners (its support points) [m]; nothing for other shapes (any point). Such
+/// a point is within reach.offset + reach.thickness of the triangle it reaches through, so a box
+/// whose corners are all far from the surface (a table under an organ) has no triangle to test.
+std::optional<std::vector<Eigen::Vector3d>> face_penetration_points(const btCollisionShape& shape,
+                                                                    const btTransform& transform);
 
 /// A straight edge of a rigid shape, in the world frame [m].
 struct RigidEdge {

@@ -4,21 +4,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace cubespring::bullet {
 
-void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd& vertices,
-                           const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
-                           const std::vector<ContactBox>& boxes) {
-  std::vector<Eigen::AlignedBox3d> regions;
-  for (const ContactBox& box : boxes) {
-    const Eigen::Vector3d grow = Eigen::Vector3d::Constant(box.reach + margin_);
-    regions.emplace_back(box.box.min() - grow, box.box.max() + grow);
-  }
-  const auto near = [&](const Eigen::AlignedBox3d& bounds) {
-    return std::any_of(regions.begin(), regions.end(),
-                       [&](const Eigen::AlignedBox3d& region) { return region.intersects(bounds); });
-  };
+namespace {
+
+// The vertices and triangles of the surface within `region` (a vertex in it, or a triangle whose
+// bounds meet it), with the triangles around each vertex taken and around each
+// corner of a taken triangle (normals read them), and every corner of those; ascending.
+void take_near(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
+               const Eigen::AlignedBox3d& region, std::vector<int>& vertices_taken, std::vector<int>& triangles_taken) {
+  const auto near = [&](const Eigen::AlignedBox3d& bounds) { return region.intersects(bounds); };
   std::vector<char> vertex_in(static_cast<std::size_t>(vertices.cols()), 0);
   std::vector<char> triangle_in(static_cast<std::size_t>(triangles.cols()), 0);
   const auto take_triangles_around = [&](int v) {
@@ -40,20 +37,68 @@ void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd
     triangle_in[static_cast<std::size_t>(t)] = 1;
     for (int k = 0; k < 3; ++k) take_triangles_around(triangles(k, t));
   }
-  triangles_.clear();
+  triangles_taken.clear();
   for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
     if (!triangle_in[static_cast<std::size_t>(t)]) continue;
-    triangles_.push_back(static_cast<int>(t));
+    triangles_taken.push_back(static_cast<int>(t));
     for (int k = 0; k < 3; ++k) vertex_in[static_cast<std::size_t>(triangles(k, t))] = 1;
   }
-  vertices_.clear();
+  vertices_taken.clear();
   for (Eigen::Index v = 0; v < vertices.cols(); ++v) {
-    if (vertex_in[static_cast<std::size_t>(v)]) vertices_.push_back(static_cast<int>(v));
+    if (vertex_in[static_cast<std::size_t>(v)]) vertices_taken.push_back(static_cast<int>(v));
+  }
+}
+
+}  // namespace
+
+void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd& vertices,
+                           const Eigen::Matrix3Xi& triangles, const SurfaceTopology& topology,
+                           const std::vector<ContactBox>& boxes) {
+  std::vector<Eigen::AlignedBox3d> regions;
+  for (const ContactBox& box : boxes) {
+    const Eigen::Vector3d grow = Eigen::Vector3d::Constant(box.reach + margin_);
+    regions.emplace_back(box.box.min() - grow, box.box.max() + grow);
+  }
+  // each box's part, then the whole window as their union (what take_near would take from all
+  // the regions at once: each of its rules takes what any one region takes)
+  box_vertices_.resize(boxes.size());
+  box_triangles_.resize(boxes.size());
+  vertices_.clear();
+  triangles_.clear();
+  std::vector<int> merged;
+  for (std::size_t b = 0; b < boxes.size(); ++b) {
+    take_near(vertices, triangles, topology, regions[b], box_vertices_[b], box_triangles_[b]);
+    merged.clear();
+    std::set_union(vertices_.begin(), vertices_.end(), box_vertices_[b].begin(), box_vertices_[b].end(),
+                   std::back_inserter(merged));
+    vertices_.swap(merged);
+    merged.clear();
+    std::set_union(triangles_.begin(), triangles_.end(), box_triangles_[b].begin(), box_triangles_[b].end(),
+                   std::back_inserter(merged));
+    triangles_.swap(merged);
   }
   chosen_nodes_ = nodes;
   boxes_ = boxes;
   moved_ = 0.0;
   chosen_ = true;
+}
+
+const std::vector<int>& SurfaceWindow::vertices_near(const void* object) const {
+  static const std::vector<int> none;
+  const std::size_t b = box_of(object);
+  return b < boxes_.size() ? box_vertices_[b] : none;
+}
+
+const std::vector<int>& SurfaceWindow::triangles_near(const void* object) const {
+  static const std::vector<int> none;
+  const std::size_t b = box_of(object);
+  return b < boxes_.size() ? box_triangles_[b] : none;
+}
+
+std::size_t SurfaceWindow::box_of(const void* object) const {
+  const auto found =
+      std::find_if(boxes_.begin(), boxes_.end(), [&](const ContactBox& box) { return box.object == object; });
+  return static_cast<std::size_t>(found - boxes_.begin());
 }
 
 void SurfaceWindow::note_moved(const Eigen::Matrix3Xd& nodes) {

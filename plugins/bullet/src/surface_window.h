@@ -49,6 +49,11 @@ class SurfaceWindow {
   bool chosen() const { return chosen_; }
   const std::vector<int>& vertices() const { return vertices_; }
   const std::vector<int>& triangles() const { return triangles_; }
+  /// The vertices and triangles the choice took for the box of `object` alone (ascending, each a
+  /// subset of vertices() and triangles()): a contact test against that body needs no other.
+  /// Empty when no box of the choice is the object's.
+  const std::vector<int>& vertices_near(const void* object) const;
+  const std::vector<int>& triangles_near(const void* object) const;
   /// The boxes of the current choice.
   const std::vector<ContactBox>& boxes() const { return boxes_; }
 
@@ -61,6 +66,9 @@ class SurfaceWindow {
   double moved_ = 0.0;  // the farthest any node has moved since the choice [m]
   std::vector<int> vertices_;
   std::vector<int> triangles_;
+  std::vector<std::vector<int>> box_vertices_;   // per box of boxes_
+  std::vector<std::vector<int>> box_triangles_;  // per box of boxes_
+  std::size_t box_of(const void* object) const;  // boxes_.size() when none
 };
 
 }  // namespace cubespring::bullet
