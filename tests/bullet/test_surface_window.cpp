@@ -2,7 +2,9 @@
 // SPDX-License-Identifier: MIT
 // The contact surface's window (plugins/bullet/src/surface_window.h): while it holds, no vertex or
 // triangle left out of it has come within reach of a rigid body's box, against brute force over
-// random motions of the nodes and the boxes; and a vertex's normal as vertex_normals() gives it.
+// random motions of the nodes and the boxes (each body's own part of it too); and a vertex's
+// normal as vertex_normals() gives it.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -136,6 +138,24 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
   window.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, chosen_boxes);
   ASSERT_TRUE(window.holds(chosen_boxes));
   ASSERT_TRUE(window_covers(window, sheet.vertices(), sheet.triangles, topology, chosen_boxes));
+  // each body's part is what a window of its box alone takes, and the window is their union
+  std::vector<int> all_vertices, all_triangles;
+  for (const ContactBox& box : chosen_boxes) {
+    SurfaceWindow alone(margin, sheet.spread);
+    alone.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {box});
+    EXPECT_EQ(window.vertices_near(box.object), alone.vertices());
+    EXPECT_EQ(window.triangles_near(box.object), alone.triangles());
+    all_vertices.insert(all_vertices.end(), alone.vertices().begin(), alone.vertices().end());
+    all_triangles.insert(all_triangles.end(), alone.triangles().begin(), alone.triangles().end());
+  }
+  for (std::vector<int>* list : {&all_vertices, &all_triangles}) {
+    std::sort(list->begin(), list->end());
+    list->erase(std::unique(list->begin(), list->end()), list->end());
+  }
+  EXPECT_EQ(window.vertices(), all_vertices);
+  EXPECT_EQ(window.triangles(), all_triangles);
+  EXPECT_LT(window.vertices_near(&sheet).size(), window.vertices().size() / 2);  // the probe's part is small
+  EXPECT_TRUE(window.vertices_near(&margin).empty());                            // a body with no box
   // a part of the surface, not all of it
   EXPECT_LT(window.vertices().size(), 900u / 2);
   EXPECT_GT(window.vertices().size(), 20u);
@@ -162,6 +182,14 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
     }
     ++held;
     ASSERT_TRUE(window_covers(copy, moved.vertices(), moved.triangles, topology, boxes)) << "trial " << trial;
+    // what a test against one body reads, its part (the choice of its box alone, above), covers
+    // that body's reach as well
+    for (std::size_t b = 0; b < boxes.size(); ++b) {
+      SurfaceWindow part(margin, sheet.spread);
+      part.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {chosen_boxes[b]});
+      ASSERT_TRUE(window_covers(part, moved.vertices(), moved.triangles, topology, {boxes[b]}))
+          << "trial " << trial << ", box " << b;
+    }
   }
   // both verdicts were reached: the test saw windows that hold and windows that had to be chosen again
   EXPECT_GT(held, 50);
