@@ -185,6 +185,19 @@ TEST(CalculixResult, BadFilesNameTheFileAndTheFault) {
   EXPECT_NE(short_list.find("element 1 of type 1 lists 7 nodes; expected 8"), std::string::npos) << short_list;
   const std::string not_frd = error_of("mesh.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   EXPECT_NE(not_frd.find("no node block (2C)"), std::string::npos) << not_frd;
+  // a line with no end (a binary file, /dev/zero) is refused at a bound, not read whole
+  const std::string endless = error_of("endless.frd", text.substr(0, 200) + std::string(100000, 'x') + "\n");
+  EXPECT_NE(endless.find("endless.frd:"), std::string::npos) << endless;
+  EXPECT_NE(endless.find("a line longer than 4096 characters"), std::string::npos) << endless;
+  const std::string zeros = read_calculix_frd("/dev/zero").message();
+  EXPECT_NE(zeros.find("/dev/zero:1: a line longer than 4096 characters"), std::string::npos) << zeros;
+  // the last line may end without a line break, and lines up to the bound are read
+  EXPECT_TRUE(read_calculix_frd(write_temp("no_last_break.frd", text.substr(0, text.size() - 1))))
+      << "the file without its last line break";
+  EXPECT_EQ(text.back(), '\n');
+  const std::string long_comment = "    1UUSER" + std::string(4096 - 10, ' ') + "\n";
+  ASSERT_EQ(long_comment.size(), 4097u);
+  EXPECT_TRUE(read_calculix_frd(write_temp("long_line.frd", long_comment + text))) << "a line of 4096 characters";
 }
 
 // The cantilever against a reference made from its own nodes, displaced 10% further.

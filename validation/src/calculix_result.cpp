@@ -23,6 +23,10 @@ namespace {
 
 constexpr int kValueWidth = 12;
 
+// An .frd line is at most a few hundred characters; a longer one is not such a file, and reading
+// it whole would grow without end (/dev/zero, a binary file with no line break).
+constexpr std::streamsize kMaxLineLength = 4096;
+
 struct SolidType {
   int node_count;
   std::vector<std::vector<int>> faces;  // corner positions within the element's node list
@@ -165,10 +169,19 @@ Status FrdReader::read_line(const std::string& line) {
 Result<FemSolution> FrdReader::read() {
   std::ifstream in(path_);
   if (!in) return Status::error(path_ + ": cannot open the CalculiX result file");
-  for (std::string line; std::getline(in, line);) {
+  std::array<char, kMaxLineLength + 1> buffer{};
+  while (in.getline(buffer.data(), static_cast<std::streamsize>(buffer.size()))) {
     ++line_number_;
+    // the count includes the line break, unless the file ended first
+    const std::streamsize stored = in.eof() ? in.gcount() : in.gcount() - 1;
+    std::string line(buffer.data(), static_cast<std::size_t>(stored));
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (Status ok = read_line(line); !ok) return ok;
+  }
+  if (!in.eof()) {
+    ++line_number_;
+    return fail("a line longer than " + std::to_string(kMaxLineLength) +
+                " characters; is this a CalculiX .frd result?");
   }
   if (block_ != Block::kNone) return fail("the file ends inside a block (no closing '-3'); is it complete?");
   return assemble();
