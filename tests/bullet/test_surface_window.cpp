@@ -156,6 +156,20 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
   EXPECT_EQ(window.triangles(), all_triangles);
   EXPECT_LT(window.vertices_near(&sheet).size(), window.vertices().size() / 2);  // the probe's part is small
   EXPECT_TRUE(window.vertices_near(&margin).empty());                            // a body with no box
+  {
+    // chosen again for fewer boxes, in another order: no part is left from the first choice
+    SurfaceWindow again = window;
+    again.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {table});
+    SurfaceWindow alone(margin, sheet.spread);
+    alone.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {table});
+    EXPECT_TRUE(again.vertices_near(&sheet).empty());
+    EXPECT_TRUE(again.triangles_near(&sheet).empty());
+    EXPECT_EQ(again.vertices_near(&topology), alone.vertices());
+    EXPECT_EQ(again.vertices(), alone.vertices());
+    again.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {table, probe});
+    EXPECT_EQ(again.vertices(), window.vertices());
+    EXPECT_EQ(again.vertices_near(&sheet), window.vertices_near(&sheet));
+  }
   // a part of the surface, not all of it
   EXPECT_LT(window.vertices().size(), 900u / 2);
   EXPECT_GT(window.vertices().size(), 20u);
@@ -187,6 +201,8 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
     for (std::size_t b = 0; b < boxes.size(); ++b) {
       SurfaceWindow part(margin, sheet.spread);
       part.choose(sheet.nodes, sheet.vertices(), sheet.triangles, topology, {chosen_boxes[b]});
+      ASSERT_EQ(copy.vertices_near(boxes[b].object), part.vertices());
+      ASSERT_EQ(copy.triangles_near(boxes[b].object), part.triangles());
       ASSERT_TRUE(window_covers(part, moved.vertices(), moved.triangles, topology, {boxes[b]}))
           << "trial " << trial << ", box " << b;
     }

@@ -191,13 +191,23 @@ TEST(CalculixResult, BadFilesNameTheFileAndTheFault) {
   EXPECT_NE(endless.find("a line longer than 4096 characters"), std::string::npos) << endless;
   const std::string zeros = read_calculix_frd("/dev/zero").message();
   EXPECT_NE(zeros.find("/dev/zero:1: a line longer than 4096 characters"), std::string::npos) << zeros;
-  // the last line may end without a line break, and lines up to the bound are read
-  EXPECT_TRUE(read_calculix_frd(write_temp("no_last_break.frd", text.substr(0, text.size() - 1))))
-      << "the file without its last line break";
-  EXPECT_EQ(text.back(), '\n');
-  const std::string long_comment = "    1UUSER" + std::string(4096 - 10, ' ') + "\n";
-  ASSERT_EQ(long_comment.size(), 4097u);
-  EXPECT_TRUE(read_calculix_frd(write_temp("long_line.frd", long_comment + text))) << "a line of 4096 characters";
+  // the last line may end without a line break (here the block's closing " -3": a character
+  // lost from it would leave the file inside a block), and lines up to the bound are read
+  const std::size_t last_close = text.rfind(" -3\n");
+  ASSERT_NE(last_close, std::string::npos);
+  const Result<FemSolution> no_last_break =
+      read_calculix_frd(write_temp("no_last_break.frd", text.substr(0, last_close + 3)));
+  EXPECT_TRUE(no_last_break) << no_last_break.message();
+  const std::string longest_comment = "    1UUSER" + std::string(4096 - 10, ' ');
+  ASSERT_EQ(longest_comment.size(), 4096u);
+  EXPECT_TRUE(read_calculix_frd(write_temp("long_line.frd", longest_comment + "\n" + text)))
+      << "a line of 4096 characters";
+  const std::string too_long = error_of("too_long.frd", longest_comment + " \n" + text);
+  EXPECT_NE(too_long.find("too_long.frd:1: a line longer than 4096 characters"), std::string::npos) << too_long;
+  // a directory opens, and then cannot be read
+  const std::string directory = read_calculix_frd(::testing::TempDir()).message();
+  EXPECT_EQ(directory.find("longer than"), std::string::npos) << directory;
+  EXPECT_NE(directory.find("cannot"), std::string::npos) << directory;
 }
 
 // The cantilever against a reference made from its own nodes, displaced 10% further.

@@ -178,6 +178,7 @@ Result<FemSolution> FrdReader::read() {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (Status ok = read_line(line); !ok) return ok;
   }
+  if (in.bad()) return Status::error(path_ + ": cannot read the file (is it a directory?)");
   if (!in.eof()) {
     ++line_number_;
     return fail("a line longer than " + std::to_string(kMaxLineLength) +

@@ -50,8 +50,8 @@ struct Exit {
 // the surface crumpled around it, was thrown out through the box's side, two cells away).
 // The exits are [first, last): a box's six fit on the stack (a vector's allocation, once per
 // vertex near a box and sub-step, cost more than the test).
-// `surface_normal` is the tissue's, in the shape's frame: asked for only when a second face is
-// within the detour.
+// `local_normal()` gives the tissue's normal in the shape's frame: asked for only when a second
+// face is within the detour.
 template <class LocalNormal>
 Eigen::Vector3d push_through(const Exit* first, const Exit* last, const LocalNormal& local_normal, double max_detour) {
   const Exit* shortest = first;

@@ -40,6 +40,9 @@ class SurfaceNormal {
     normal.compute_ = [](const void* context) -> Eigen::Vector3d { return (*static_cast<const Compute*>(context))(); };
     return normal;
   }
+  /// (a temporary would be gone before the normal is asked for)
+  template <class Compute>
+  static SurfaceNormal when_asked(const Compute&& compute) = delete;
 
   const Eigen::Vector3d& get() const {
     if (compute_ != nullptr) {
