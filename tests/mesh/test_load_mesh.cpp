@@ -480,6 +480,21 @@ TEST_F(LoadMesh, ACrashOrHangOfTheColladaReaderIsAnError) {
   EXPECT_DOUBLE_EQ(signed_volume(*mesh), 1.0 / 6.0);
 }
 
+// PLY reads in a process of its own too, after its check: a binary file the check passes made
+// assimp's reader ask for 34 GB (found by fuzz_load_mesh); it is an error naming the file and the
+// reader, and a good PLY file still reads.
+TEST_F(LoadMesh, APlyFileThatPassesTheCheckButAsksForGigabytesIsAnError) {
+  const std::string path = std::string(CUBESPRING_TEST_DATA_DIR) + "/mesh/ply_asks_34_gigabytes.ply";
+  LoadOptions patient;  // AddressSanitizer's report of the child's failed allocation takes its time
+  patient.reader_seconds = 120.0;
+  const Result<TriangleMesh> read = load_mesh(path, patient);
+  // under AddressSanitizer the child stops on the allocation; else assimp catches it
+  expect_error(read, path);
+  EXPECT_TRUE(read.message().find("more memory than it may take") != std::string::npos ||
+              read.message().find("assimp's PLY reader") != std::string::npos)
+      << read.message();
+}
+
 // glTF reads in a process of its own too: the tetrahedron (its buffer inline, as base64) comes
 // back whole, and an accessor past its buffer is assimp's own error, passed on.
 TEST_F(LoadMesh, GltfReadsThroughItsOwnProcess) {
