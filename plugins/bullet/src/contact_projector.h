@@ -1,7 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // Contacts between a soft body's surface and rigid bodies, one sub-step's worth
-// (docs/bullet-plugin.md, section 2).
+// (docs/bullet-plugin.md, section 2): found in contact_projector.cpp, solved in contact_sweeps.cpp.
 #pragma once
 
 #include <map>
