@@ -232,6 +232,12 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   drop_unseen(last_cores_);
 }
 
+Eigen::AlignedBox3d ContactProjector::bounds_near(const void* object) const {
+  Eigen::AlignedBox3d bounds;
+  for (const int v : window_.vertices_near(object)) bounds.extend(body_.surface_positions_.col(v));
+  return bounds;
+}
+
 Eigen::AlignedBox3d ContactProjector::face_test_region(const RigidTrack& track, const ContactReach& face_reach) const {
   const btCollisionShape& shape = *track.object->getCollisionShape();
   const double reach = face_reach.thickness + face_reach.offset;
@@ -246,8 +252,7 @@ Eigen::AlignedBox3d ContactProjector::face_test_region(const RigidTrack& track, 
     region.max().array() += reach;
     return region;
   }
-  Eigen::AlignedBox3d surface;
-  for (const int v : window_.vertices_near(track.object)) surface.extend(body_.surface_positions_.col(v));
+  const Eigen::AlignedBox3d surface = bounds_near(track.object);
   for (const Eigen::Vector3d& point : *points) {
     const Eigen::AlignedBox3d around(point.array() - reach, point.array() + reach);
     if (around.intersects(surface)) region.extend(around);
@@ -261,8 +266,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
   if (edges.empty()) return;
   // each edge meets only the triangles near it, and most edges none: a table's lie far from an
   // organ lying on it
-  Eigen::AlignedBox3d surface;
-  for (const int v : window_.vertices_near(track.object)) surface.extend(body_.surface_positions_.col(v));
+  const Eigen::AlignedBox3d surface = bounds_near(track.object);
   std::vector<RigidEdge> near_edges;
   std::vector<Eigen::AlignedBox3d> near_edge;
   Eigen::AlignedBox3d near_any;

@@ -67,6 +67,8 @@ class ContactProjector {
   // The rigid body's box edges pushed out of the triangles they reach through between corners
   // that the vertex contacts left on the box's faces, less than `thickness` behind them.
   void resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held);
+  // The bounds of the window's part for the body `object` [m], as the surface stands now.
+  Eigen::AlignedBox3d bounds_near(const void* object) const;
   // Where a triangle must reach to be tested for face contacts with the track's shape: around the
   // points of it that can reach through a triangle (face_penetration_points) that are near the
   // window, or its bounding box, grown by the face contacts' depth and offset. Empty: none.

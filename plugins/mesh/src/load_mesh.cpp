@@ -248,7 +248,7 @@ Result<TriangleMesh> load(const std::string& path, const LoadOptions& options) {
   if (!off.ok()) return off;
   // assimp's COLLADA and glTF readers trust what no check here reads first (a stride of 2^32, a
   // letter in an index list crashed or hung them): they read in a process of their own. So does
-  // the PLY reader, whose file passed the check above: a 430-byte file that the check found laid
+  // the PLY reader, whose file passed the check above: a 343-byte file that the check found laid
   // out as its header says made it ask for 34 GB (fuzz_load_mesh, 200,000 inputs into a run)
   if (*format == MeshFormat::kCollada || *format == MeshFormat::kGltf || *format == MeshFormat::kPly) {
     std::error_code failed;  // (it was readable a moment ago; were its size unknown, none is added)
