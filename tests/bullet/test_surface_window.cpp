@@ -156,6 +156,17 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
   EXPECT_EQ(window.triangles(), all_triangles);
   EXPECT_LT(window.vertices_near(&sheet).size(), window.vertices().size() / 2);  // the probe's part is small
   EXPECT_TRUE(window.vertices_near(&margin).empty());                            // a body with no box
+  EXPECT_TRUE(window.bounds_near(&margin).isEmpty());
+  // with nothing moved, a part's bounds are its vertices' own, and they stand where they were
+  EXPECT_EQ(window.vertex_travel(), 0.0);
+  for (const ContactBox& box : chosen_boxes) {
+    Eigen::AlignedBox3d exact;
+    for (const int v : window.vertices_near(box.object)) {
+      exact.extend(sheet.vertices().col(v));
+      ASSERT_EQ(window.chosen_position(v), sheet.vertices().col(v));
+    }
+    EXPECT_TRUE(window.bounds_near(box.object).isApprox(exact));
+  }
   {
     // chosen again for fewer boxes, in another order: no part is left from the first choice
     SurfaceWindow again = window;
@@ -196,6 +207,19 @@ TEST(SurfaceWindow, WhileItHoldsNothingLeftOutHasComeWithinReach) {
     }
     ++held;
     ASSERT_TRUE(window_covers(copy, moved.vertices(), moved.triangles, topology, boxes)) << "trial " << trial;
+    // a test that skips a vertex because it was too far at the choice to have come within reach
+    // since, and one that uses a part's bounds without reading its vertices, miss none
+    const Eigen::Matrix3Xd now = moved.vertices();
+    for (const int v : copy.vertices()) {
+      ASSERT_LE((now.col(v) - copy.chosen_position(v)).norm(), copy.vertex_travel() * (1.0 + 1e-12))
+          << "trial " << trial << ", vertex " << v;
+    }
+    for (const ContactBox& box : boxes) {
+      const Eigen::AlignedBox3d bounds = copy.bounds_near(box.object);
+      for (const int v : copy.vertices_near(box.object)) {
+        ASSERT_TRUE(bounds.contains(now.col(v))) << "trial " << trial << ", vertex " << v;
+      }
+    }
     // what a test against one body reads, its part (the choice of its box alone, above), covers
     // that body's reach as well
     for (std::size_t b = 0; b < boxes.size(); ++b) {

@@ -99,8 +99,12 @@ void ContactProjector::refresh_surface(const std::vector<RigidTrack>& tracks) {
     choose_window(boxes);
     return;
   }
+  // a round tool's part at once (its odometer's vertices); the rest as the tests read it: an
+  // organ resting on a table has a band of vertices within the table's window, and only those at
+  // its top are tested
+  body_.mark_surface_stale();
   double farthest = 0.0;  // squared
-  for (const int v : window_.vertices()) farthest = std::max(farthest, body_.refresh_vertex(v));
+  for (const int v : whole_read_vertices_) farthest = std::max(farthest, body_.refresh_vertex(v));
   surface_travel_ += std::sqrt(farthest);
 }
 
@@ -117,32 +121,44 @@ std::vector<ContactBox> ContactProjector::contact_boxes(const std::vector<RigidT
     // a round tool's triangles are looked for a cell beyond its radius (which its box holds); other
     // shapes' vertices as far as penetration_push() finds them, and the faces a tool (or a box's
     // edge) reaches through half a cell
+    const bool round = round_core(shape, track.transform).has_value();
     double beyond = reach.offset + cell;
-    if (!round_core(shape, track.transform)) {
+    if (!round) {
       beyond = std::max(push_reach_beyond_bounds(shape, reach), reach.offset + kFaceContactDepthCells * cell);
     }
-    boxes.push_back({track.object, Eigen::AlignedBox3d(to_eigen(low), to_eigen(high)), beyond});
+    boxes.push_back({track.object, Eigen::AlignedBox3d(to_eigen(low), to_eigen(high)), beyond, round});
   }
   return boxes;
 }
 
 void ContactProjector::choose_window(const std::vector<ContactBox>& boxes) {
-  // the odometer follows the vertices of the window that ends (the others were far from any tool)
+  // the odometer follows the round tools' vertices of the window that ends (the others were far
+  // from any round tool)
   std::vector<Eigen::Vector3d> before;
-  for (const int v : window_.vertices()) before.emplace_back(body_.surface_positions_.col(v));
+  for (const int v : whole_read_vertices_) before.emplace_back(body_.surface_positions_.col(v));
   body_.update_surface();
   double farthest = 0.0;
   for (std::size_t i = 0; i < before.size(); ++i) {
-    farthest = std::max(farthest, (body_.surface_positions_.col(window_.vertices()[i]) - before[i]).norm());
+    farthest = std::max(farthest, (body_.surface_positions_.col(whole_read_vertices_[i]) - before[i]).norm());
   }
   surface_travel_ += farthest;
   window_.choose(body_.state_.positions, body_.surface_positions_, body_.surface_triangles_, *body_.surface_topology_,
                  boxes);
+  for (const int v : whole_read_vertices_) whole_read_[static_cast<std::size_t>(v)] = 0;
+  whole_read_.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
+  whole_read_vertices_.clear();
+  for (const ContactBox& box : boxes) {
+    if (!box.read_whole) continue;
+    for (const int v : window_.vertices_near(box.object)) whole_read_[static_cast<std::size_t>(v)] = 1;
+  }
+  for (const int v : window_.vertices()) {
+    if (whole_read_[static_cast<std::size_t>(v)]) whole_read_vertices_.push_back(v);
+  }
 }
 
 void ContactProjector::refresh_moved() {
   window_.note_moved(body_.state_.positions, body_.moved_nodes_);
-  surface_travel_ += body_.update_moved_surface();
+  surface_travel_ += body_.update_moved_surface(whole_read_);
   // the boxes have not moved within a sub-step's contacts
   if (!window_.holds(window_.boxes())) choose_window(window_.boxes());
 }
@@ -151,7 +167,6 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   const ContactSettings& settings = body_.contact_;
   ContactReach reach = reach_for(settings, body_.model_.cell_size.maxCoeff());
   reach.offset = settings.offset;
-  std::vector<char> touched;
   for (auto& [object, last] : last_impulses_) last.seen = false;
   for (auto& [object, last] : last_edge_impulses_) last.seen = false;
   for (auto& [object, last] : last_cores_) last.seen = false;
@@ -167,7 +182,10 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     const double vertex_margin = push_reach_beyond_bounds(shape, reach);
     const Eigen::Array3d vertex_lower = to_eigen(low).array() - vertex_margin;
     const Eigen::Array3d vertex_upper = to_eigen(high).array() + vertex_margin;
-    touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
+    // (cleared where it was set: clearing the whole surface's flags took more than the tests)
+    for (const int v : touched_vertices_) touched_[static_cast<std::size_t>(v)] = 0;
+    touched_vertices_.clear();
+    touched_.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
     const std::vector<char> held = vertices_held_by(track.object);
     // a round tool meets the whole surface, its corners included (resolve_round_tool): pushing
     // the vertices first, each to the nearest way out of the tool, fought that
@@ -177,19 +195,26 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
       continue;
     }
     points_.clear();
+    // a vertex that was farther from the box at the window's choice than it can have moved since
+    // is not refreshed to be tested
+    const double travel = window_.vertex_travel();
     for (const int v : window_.vertices_near(track.object)) {
-      const Eigen::Vector3d x = body_.surface_positions_.col(v);
+      const Eigen::Array3d then = window_.chosen_position(v).array();
+      if ((then < vertex_lower - travel).any() || (then > vertex_upper + travel).any()) continue;
+      const Eigen::Vector3d x = body_.fresh_vertex(v);
       if ((x.array() < vertex_lower).any() || (x.array() > vertex_upper).any()) continue;
       if (!held.empty() && held[static_cast<std::size_t>(v)]) continue;
       // the tissue's outward normal tells a rigid edge's faces apart
       const auto normal_at_v = [&] {
+        freshen_triangles_around(v);
         return vertex_normal(*body_.surface_topology_, body_.surface_positions_, body_.surface_triangles_, v);
       };
       const std::optional<Eigen::Vector3d> push =
           penetration_push(shape, track.transform, x, SurfaceNormal::when_asked(normal_at_v), reach);
       if (!push || push->squaredNorm() == 0.0) continue;
       add_vertex_point(v, *push);
-      touched[static_cast<std::size_t>(v)] = 1;
+      touched_[static_cast<std::size_t>(v)] = 1;
+      touched_vertices_.push_back(v);
     }
     LastImpulses& last = last_impulses_[track.object];
     last.seen = true;
@@ -212,8 +237,9 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     // already met this body is held by them)
     const Eigen::AlignedBox3d face_region = face_test_region(track, face_reach);
     if (face_region.isEmpty()) continue;
+    freshen_part(track.object);
     for (const int t : window_.triangles_near(track.object)) {
-      if (any_corner(touched, body_.surface_triangles_, t)) continue;
+      if (any_corner(touched_, body_.surface_triangles_, t)) continue;
       if (any_corner(held, body_.surface_triangles_, t)) continue;  // a point of it would move held nodes too
       const Eigen::Vector3d a = body_.surface_positions_.col(body_.surface_triangles_(0, t));
       const Eigen::Vector3d b = body_.surface_positions_.col(body_.surface_triangles_(1, t));
@@ -232,10 +258,17 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   drop_unseen(last_cores_);
 }
 
-Eigen::AlignedBox3d ContactProjector::bounds_near(const void* object) const {
-  Eigen::AlignedBox3d bounds;
-  for (const int v : window_.vertices_near(object)) bounds.extend(body_.surface_positions_.col(v));
-  return bounds;
+void ContactProjector::freshen_part(const void* object) {
+  for (const int v : window_.vertices_near(object)) body_.fresh_vertex(v);
+}
+
+void ContactProjector::freshen_triangles_around(int v) {
+  const SurfaceTopology& topology = *body_.surface_topology_;
+  for (int k = topology.vertex_offset[static_cast<std::size_t>(v)];
+       k < topology.vertex_offset[static_cast<std::size_t>(v) + 1]; ++k) {
+    const int t = topology.vertex_triangle[static_cast<std::size_t>(k)];
+    for (int corner = 0; corner < 3; ++corner) body_.fresh_vertex(body_.surface_triangles_(corner, t));
+  }
 }
 
 Eigen::AlignedBox3d ContactProjector::face_test_region(const RigidTrack& track, const ContactReach& face_reach) const {
@@ -252,7 +285,7 @@ Eigen::AlignedBox3d ContactProjector::face_test_region(const RigidTrack& track, 
     region.max().array() += reach;
     return region;
   }
-  const Eigen::AlignedBox3d surface = bounds_near(track.object);
+  const Eigen::AlignedBox3d surface = window_.bounds_near(track.object);
   for (const Eigen::Vector3d& point : *points) {
     const Eigen::AlignedBox3d around(point.array() - reach, point.array() + reach);
     if (around.intersects(surface)) region.extend(around);
@@ -266,7 +299,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
   if (edges.empty()) return;
   // each edge meets only the triangles near it, and most edges none: a table's lie far from an
   // organ lying on it
-  const Eigen::AlignedBox3d surface = bounds_near(track.object);
+  const Eigen::AlignedBox3d surface = window_.bounds_near(track.object);
   std::vector<RigidEdge> near_edges;
   std::vector<Eigen::AlignedBox3d> near_edge;
   Eigen::AlignedBox3d near_any;
@@ -280,6 +313,7 @@ void ContactProjector::resolve_box_edges(RigidTrack& track, double thickness, co
     near_any.extend(box);
   }
   if (near_edges.empty()) return;
+  freshen_part(track.object);
   const std::size_t from = points_.size();  // after the vertex points against the same body
   for (const int t : window_.triangles_near(track.object)) {
     const auto corner = [&](int k) { return static_cast<std::size_t>(body_.surface_triangles_(k, t)); };

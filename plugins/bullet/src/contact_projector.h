@@ -67,8 +67,10 @@ class ContactProjector {
   // The rigid body's box edges pushed out of the triangles they reach through between corners
   // that the vertex contacts left on the box's faces, less than `thickness` behind them.
   void resolve_box_edges(RigidTrack& track, double thickness, const std::vector<char>& held);
-  // The bounds of the window's part for the body `object` [m], as the surface stands now.
-  Eigen::AlignedBox3d bounds_near(const void* object) const;
+  // The window's part for the body `object` refreshed, for a test that reads all of it.
+  void freshen_part(const void* object);
+  // The corners of the triangles around vertex v refreshed (its normal reads them).
+  void freshen_triangles_around(int v);
   // Where a triangle must reach to be tested for face contacts with the track's shape: around the
   // points of it that can reach through a triangle (face_penetration_points) that are near the
   // window, or its bounding box, grown by the face contacts' depth and offset. Empty: none.
@@ -132,10 +134,20 @@ class ContactProjector {
 
   SoftBody& body_;
   SurfaceWindow window_;
-  // The surface's odometer: the farthest any window vertex moved, summed over every refresh [m].
-  // No vertex near a tool has moved farther than the difference of two readings.
+  // The surface's odometer: the farthest any vertex a round tool reads moved (and any fresh one a
+  // contact moved), summed over every refresh [m]. No vertex near a round tool has moved farther
+  // than the difference of two readings.
   double surface_travel_ = 0.0;
-  std::vector<ContactPoint> points_;  // this pass's contacts
+  // The window's vertices that round tools read, refreshed whole every sub-step and after every
+  // pass (ascending; and flagged per surface vertex); the rest are refreshed when a test reads them.
+  std::vector<int> whole_read_vertices_;
+  std::vector<char> whole_read_;
+  // per surface vertex: whether the current body's vertex contacts took it (the face tests skip
+  // its triangles); and the ones set
+  std::vector<char> touched_;
+  std::vector<int> touched_vertices_;
+  std::vector<ContactPoint> points_;              // this pass's contacts
+  std::vector<Eigen::Vector3d> impulses_before_;  // resolve_impulses(): the points' impulses before it
   // A node of a contact point, its weight there, and what a change at the point gives it per unit
   // (weight / mass for a movable node, else 0), set by prepare_points().
   struct PointNode {

@@ -159,17 +159,23 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
   // sheared between a plate and the floor carried no shear at all (section 2.3).
   Eigen::Matrix3Xd& x = body_.state_.positions;
   const double dt = body_.step_settings_.time_step;  // this sub-step's
+  // a dynamic body's velocity takes each change at once; a static or kinematic body only counts
+  // them, so it is given each point's whole change once the sweeps end
   const auto deliver = [&](ContactPoint& point, const Eigen::Vector3d& impulse) {
     const Eigen::Vector3d change = impulse - point.impulse;
     if (track.dynamic) {
       move_nodes(point, v, change);
+      track.receive(-point.share * change, point.contact, false);
     } else {
       move_nodes(point, v, change, x, dt * (change - change.dot(point.normal) * point.normal));
     }
-    track.receive(-point.share * change, point.contact, false);
     point.impulse = impulse;
     return change;
   };
+  impulses_before_.clear();
+  if (!track.dynamic) {
+    for (std::size_t i = from; i < points_.size(); ++i) impulses_before_.push_back(points_[i].impulse);
+  }
   if (last != nullptr) {
     for (std::size_t i = from; i < points_.size(); ++i) {
       ContactPoint& point = points_[i];
@@ -201,6 +207,12 @@ void ContactProjector::resolve_impulses(RigidTrack& track, const LastImpulses* l
       largest = std::max(largest, changed);
     }
     if (largest < tolerance * tolerance) break;
+  }
+  if (!track.dynamic) {
+    for (std::size_t i = from; i < points_.size(); ++i) {
+      const ContactPoint& point = points_[i];
+      track.receive(-point.share * (point.impulse - impulses_before_[i - from]), point.contact, false);
+    }
   }
 }
 

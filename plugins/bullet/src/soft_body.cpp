@@ -139,6 +139,7 @@ void SoftBody::index_vertices_by_node() {
   }
   node_moved_.assign(num_nodes, 0);
   vertex_stale_.assign(surface_offset_.size() - 1, 0);
+  vertex_refreshed_at_.assign(surface_offset_.size() - 1, 0);
 }
 
 double SoftBody::refresh_vertex(int v) {
@@ -152,12 +153,14 @@ double SoftBody::refresh_vertex(int v) {
   }
   const double moved = (sum - surface_positions_.col(v)).squaredNorm();
   surface_positions_.col(v) = sum;
+  vertex_refreshed_at_[static_cast<std::size_t>(v)] = surface_refreshes_;
   return moved;
 }
 
 void SoftBody::update_surface() {
   const int vertices = static_cast<int>(surface_offset_.size()) - 1;
   if (surface_positions_.cols() != vertices) surface_positions_.setZero(3, vertices);
+  vertex_refreshed_at_.resize(static_cast<std::size_t>(vertices));
   for (int v = 0; v < vertices; ++v) refresh_vertex(v);
   for (const int node : moved_nodes_) node_moved_[static_cast<std::size_t>(node)] = 0;
   moved_nodes_.clear();
@@ -169,7 +172,7 @@ void SoftBody::mark_moved(int node) {
   moved_nodes_.push_back(node);
 }
 
-double SoftBody::update_moved_surface() {
+double SoftBody::update_moved_surface(const std::vector<char>& refresh_now) {
   // each stale vertex once (it may hang from several moved nodes)
   stale_vertices_.clear();
   for (const int node : moved_nodes_) {
@@ -185,8 +188,13 @@ double SoftBody::update_moved_surface() {
   moved_nodes_.clear();
   double farthest = 0.0;
   for (const int v : stale_vertices_) {
-    farthest = std::max(farthest, refresh_vertex(v));  // the same sums as update_surface(), so the same bits
-    vertex_stale_[static_cast<std::size_t>(v)] = 0;
+    const auto i = static_cast<std::size_t>(v);
+    vertex_stale_[i] = 0;
+    if (refresh_now[i]) {
+      farthest = std::max(farthest, refresh_vertex(v));  // the same sums as update_surface(), so the same bits
+    } else {
+      vertex_refreshed_at_[i] = surface_refreshes_ - 1;  // stale: fresh_vertex() refreshes it if read
+    }
   }
   return std::sqrt(farthest);
 }

@@ -63,11 +63,13 @@ void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd
   // the regions at once: each of its rules takes what any one region takes)
   box_vertices_.resize(boxes.size());
   box_triangles_.resize(boxes.size());
+  box_bounds_.assign(boxes.size(), Eigen::AlignedBox3d());
   vertices_.clear();
   triangles_.clear();
   std::vector<int> merged;
   for (std::size_t b = 0; b < boxes.size(); ++b) {
     take_near(vertices, triangles, topology, regions[b], box_vertices_[b], box_triangles_[b]);
+    for (const int v : box_vertices_[b]) box_bounds_[b].extend(vertices.col(v));
     merged.clear();
     std::set_union(vertices_.begin(), vertices_.end(), box_vertices_[b].begin(), box_vertices_[b].end(),
                    std::back_inserter(merged));
@@ -78,6 +80,7 @@ void SurfaceWindow::choose(const Eigen::Matrix3Xd& nodes, const Eigen::Matrix3Xd
     triangles_.swap(merged);
   }
   chosen_nodes_ = nodes;
+  chosen_vertices_ = vertices;
   boxes_ = boxes;
   moved_ = 0.0;
   chosen_ = true;
@@ -93,6 +96,13 @@ const std::vector<int>& SurfaceWindow::triangles_near(const void* object) const 
   static const std::vector<int> none;
   const std::size_t b = box_of(object);
   return b < boxes_.size() ? box_triangles_[b] : none;
+}
+
+Eigen::AlignedBox3d SurfaceWindow::bounds_near(const void* object) const {
+  const std::size_t b = box_of(object);
+  if (b == boxes_.size() || box_bounds_[b].isEmpty()) return {};
+  const Eigen::Vector3d travel = Eigen::Vector3d::Constant(vertex_travel());
+  return {box_bounds_[b].min() - travel, box_bounds_[b].max() + travel};
 }
 
 std::size_t SurfaceWindow::box_of(const void* object) const {

@@ -20,6 +20,9 @@ struct ContactBox {
   const void* object = nullptr;  ///< which body, to match the boxes of one choice to the next
   Eigen::AlignedBox3d box;
   double reach = 0.0;
+  /// Whether the body's tests read its whole part at once (a round tool's triangles), so that the
+  /// part is refreshed whole every sub-step; else each vertex is refreshed as a test reads it.
+  bool read_whole = false;
 };
 
 /// Chosen from fresh surface positions, the window holds while no node has moved, and no box has
@@ -56,18 +59,29 @@ class SurfaceWindow {
   const std::vector<int>& triangles_near(const void* object) const;
   /// The boxes of the current choice.
   const std::vector<ContactBox>& boxes() const { return boxes_; }
+  /// How far any surface vertex may have moved since the choice [m]: the spread times the farthest
+  /// any node has moved (note_moved). A test that a vertex cannot pass from where it was then
+  /// (chosen_position) grown by this needs no fresh position of it.
+  double vertex_travel() const { return spread_ * moved_; }
+  /// Where vertex v was at the choice [m].
+  Eigen::Vector3d chosen_position(int v) const { return chosen_vertices_.col(v); }
+  /// The bounds of vertices_near(object) wherever they have moved since the choice [m]: their
+  /// bounds then grown by vertex_travel(). Empty when no box of the choice is the object's.
+  Eigen::AlignedBox3d bounds_near(const void* object) const;
 
  private:
   double margin_;
   double spread_;
   bool chosen_ = false;
   Eigen::Matrix3Xd chosen_nodes_;
+  Eigen::Matrix3Xd chosen_vertices_;
   std::vector<ContactBox> boxes_;
   double moved_ = 0.0;  // the farthest any node has moved since the choice [m]
   std::vector<int> vertices_;
   std::vector<int> triangles_;
   std::vector<std::vector<int>> box_vertices_;   // per box of boxes_
   std::vector<std::vector<int>> box_triangles_;  // per box of boxes_
+  std::vector<Eigen::AlignedBox3d> box_bounds_;  // per box of boxes_: its vertices' bounds at the choice
   std::size_t box_of(const void* object) const;  // boxes_.size() when none
 };
 

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -175,11 +176,20 @@ class SoftBody {
   double refresh_vertex(int v);
   /// Every contact-surface vertex from the nodes (after a step moved them all).
   void update_surface();
+  /// The nodes have moved (a sub-step's elastic step): every vertex is stale until refreshed,
+  /// which the contacts do only for the vertices they read (fresh_vertex).
+  void mark_surface_stale() { ++surface_refreshes_; }
+  /// Contact-surface vertex v [m], refreshed first if it is stale.
+  Eigen::Vector3d fresh_vertex(int v) {
+    if (vertex_refreshed_at_[static_cast<std::size_t>(v)] != surface_refreshes_) refresh_vertex(v);
+    return surface_positions_.col(v);
+  }
   /// Node n was moved by a contact: its vertices are stale until update_moved_surface().
   void mark_moved(int node);
-  /// Recomputes the vertices of the nodes marked since the last update, as update_surface() does;
-  /// returns the farthest one of them moved [m].
-  double update_moved_surface();
+  /// The vertices of the nodes marked since the last update: those flagged in `refresh_now` (per
+  /// vertex) recomputed as update_surface() does, the others made stale (fresh_vertex() refreshes
+  /// them if read); returns the farthest a recomputed one moved [m].
+  double update_moved_surface(const std::vector<char>& refresh_now);
 
   Model model_;
   State state_;
@@ -208,6 +218,9 @@ class SoftBody {
   std::vector<char> node_moved_;
   std::vector<int> stale_vertices_;
   std::vector<char> vertex_stale_;
+  // mark_surface_stale() counts up; a vertex is fresh while its count is the current one
+  std::uint64_t surface_refreshes_ = 0;  // (no wrap: a 32-bit count wraps after days of sub-steps)
+  std::vector<std::uint64_t> vertex_refreshed_at_;
   // which triangles neighbour which, and which bound the tissue from outside (round tools' contact)
   std::shared_ptr<const SurfaceTopology> surface_topology_;
   Embedding embedding_;
