@@ -259,6 +259,9 @@ TEST(SurfaceWindow, ANodeMovedByTheMarginOrABoxOfAnotherBodyEndsIt) {
   ContactBox farther = probe;
   farther.reach = 0.005;  // reaching farther than its choice counts as the box growing
   EXPECT_FALSE(window.holds({farther}));
+  ContactBox round = probe;
+  round.read_whole = true;  // the same body now read whole (its shape swapped for a round one)
+  EXPECT_FALSE(window.holds({round}));
 }
 
 TEST(SurfaceTopology, OneVertexNormalIsVertexNormalsBitForBit) {

@@ -134,9 +134,9 @@ class ContactProjector {
 
   SoftBody& body_;
   SurfaceWindow window_;
-  // The surface's odometer: the farthest any vertex a round tool reads moved (and any fresh one a
-  // contact moved), summed over every refresh [m]. No vertex near a round tool has moved farther
-  // than the difference of two readings.
+  // The surface's odometer: the farthest any vertex a round tool reads moved, summed over every
+  // refresh of them [m]. No vertex near a round tool has moved farther than the difference of two
+  // readings.
   double surface_travel_ = 0.0;
   // The window's vertices that round tools read, refreshed whole every sub-step and after every
   // pass (ascending; and flagged per surface vertex); the rest are refreshed when a test reads them.

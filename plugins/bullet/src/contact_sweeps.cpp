@@ -45,7 +45,17 @@ void ContactProjector::solve_points(RigidTrack& track, std::size_t from, bool co
   prepare_points(track, count, from);
   project_positions(from, last);
   resolve_impulses(track, last, from);
-  if (from > 0) resolve_impulses(track, nullptr, 0);
+  if (from == 0) return;
+  resolve_impulses(track, nullptr, 0);
+  // that moved the earlier pass's nodes again (against a static or kinematic body their positions
+  // too, friction's drift): their vertices are stale again, and the window counts the move
+  for (std::size_t i = 0; i < from; ++i) {
+    const ContactPoint& point = points_[i];
+    for (int e = point.first_node; e < point.end_node; ++e) {
+      const PointNode& entry = point_nodes_[static_cast<std::size_t>(e)];
+      if (entry.share_per_mass != 0.0) body_.mark_moved(entry.node);
+    }
+  }
 }
 
 // The nodes a point moves: those it has a positive weight on, unless driven (a vertex embedded by

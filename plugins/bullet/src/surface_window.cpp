@@ -128,7 +128,8 @@ bool SurfaceWindow::holds(const std::vector<ContactBox>& boxes) const {
   for (const ContactBox& box : boxes) {
     const auto then = std::find_if(boxes_.begin(), boxes_.end(),
                                    [&](const ContactBox& chosen) { return chosen.object == box.object; });
-    if (then == boxes_.end()) return false;
+    // a body whose kind of contact changed (its shape swapped) is read another way
+    if (then == boxes_.end() || then->read_whole != box.read_whole) return false;
     const Eigen::Vector3d low = (then->box.min().array() - then->reach) - (box.box.min().array() - box.reach);
     const Eigen::Vector3d high = (box.box.max().array() + box.reach) - (then->box.max().array() + then->reach);
     grown = std::max({grown, low.maxCoeff(), high.maxCoeff()});

@@ -46,7 +46,8 @@ class SurfaceWindow {
   void note_moved(const Eigen::Matrix3Xd& nodes);
   void note_moved(const Eigen::Matrix3Xd& nodes, const std::vector<int>& which);
 
-  /// Whether the choice still holds for these boxes (the same bodies, in any order).
+  /// Whether the choice still holds for these boxes (the same bodies, read the same way, in any
+  /// order).
   bool holds(const std::vector<ContactBox>& boxes) const;
 
   bool chosen() const { return chosen_; }
