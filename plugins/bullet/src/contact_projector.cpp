@@ -167,6 +167,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
   const ContactSettings& settings = body_.contact_;
   ContactReach reach = reach_for(settings, body_.model_.cell_size.maxCoeff());
   reach.offset = settings.offset;
+  std::vector<char> touched;
   for (auto& [object, last] : last_impulses_) last.seen = false;
   for (auto& [object, last] : last_edge_impulses_) last.seen = false;
   for (auto& [object, last] : last_cores_) last.seen = false;
@@ -182,10 +183,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     const double vertex_margin = push_reach_beyond_bounds(shape, reach);
     const Eigen::Array3d vertex_lower = to_eigen(low).array() - vertex_margin;
     const Eigen::Array3d vertex_upper = to_eigen(high).array() + vertex_margin;
-    // (cleared where it was set: clearing the whole surface's flags took more than the tests)
-    for (const int v : touched_vertices_) touched_[static_cast<std::size_t>(v)] = 0;
-    touched_vertices_.clear();
-    touched_.resize(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
+    touched.assign(static_cast<std::size_t>(body_.surface_positions_.cols()), 0);
     const std::vector<char> held = vertices_held_by(track.object);
     // a round tool meets the whole surface, its corners included (resolve_round_tool): pushing
     // the vertices first, each to the nearest way out of the tool, fought that
@@ -213,8 +211,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
           penetration_push(shape, track.transform, x, SurfaceNormal::when_asked(normal_at_v), reach);
       if (!push || push->squaredNorm() == 0.0) continue;
       add_vertex_point(v, *push);
-      touched_[static_cast<std::size_t>(v)] = 1;
-      touched_vertices_.push_back(v);
+      touched[static_cast<std::size_t>(v)] = 1;
     }
     LastImpulses& last = last_impulses_[track.object];
     last.seen = true;
@@ -239,7 +236,7 @@ void ContactProjector::resolve(std::vector<RigidTrack>& tracks) {
     if (face_region.isEmpty()) continue;
     freshen_part(track.object);
     for (const int t : window_.triangles_near(track.object)) {
-      if (any_corner(touched_, body_.surface_triangles_, t)) continue;
+      if (any_corner(touched, body_.surface_triangles_, t)) continue;
       if (any_corner(held, body_.surface_triangles_, t)) continue;  // a point of it would move held nodes too
       const Eigen::Vector3d a = body_.surface_positions_.col(body_.surface_triangles_(0, t));
       const Eigen::Vector3d b = body_.surface_positions_.col(body_.surface_triangles_(1, t));

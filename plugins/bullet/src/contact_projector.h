@@ -142,10 +142,6 @@ class ContactProjector {
   // pass (ascending; and flagged per surface vertex); the rest are refreshed when a test reads them.
   std::vector<int> whole_read_vertices_;
   std::vector<char> whole_read_;
-  // per surface vertex: whether the current body's vertex contacts took it (the face tests skip
-  // its triangles); and the ones set
-  std::vector<char> touched_;
-  std::vector<int> touched_vertices_;
   std::vector<ContactPoint> points_;              // this pass's contacts
   std::vector<Eigen::Vector3d> impulses_before_;  // resolve_impulses(): the points' impulses before it
   // A node of a contact point, its weight there, and what a change at the point gives it per unit

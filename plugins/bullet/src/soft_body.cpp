@@ -160,7 +160,6 @@ double SoftBody::refresh_vertex(int v) {
 void SoftBody::update_surface() {
   const int vertices = static_cast<int>(surface_offset_.size()) - 1;
   if (surface_positions_.cols() != vertices) surface_positions_.setZero(3, vertices);
-  vertex_refreshed_at_.resize(static_cast<std::size_t>(vertices));
   for (int v = 0; v < vertices; ++v) refresh_vertex(v);
   for (const int node : moved_nodes_) node_moved_[static_cast<std::size_t>(node)] = 0;
   moved_nodes_.clear();

@@ -2,9 +2,9 @@
 // SPDX-License-Identifier: MIT
 // A reader that a malformed file can crash or hang, run in a child process with a time and a
 // memory limit: assimp's COLLADA and glTF readers, which nothing checks before they read, and its
-// PLY reader, which a checked file still made ask for 34 GB (docs/voxelize.md section 1). The child reads the mesh and
-// sends it back through a pipe; a crash, a hang or a runaway allocation in it is an error naming the file and the
-// reader, and the caller's process goes on.
+// PLY reader, which a checked file still made ask for 34 GB (docs/voxelize.md section 1). The
+// child reads the mesh and sends it back through a pipe; a crash, a hang or a runaway allocation
+// in it is an error naming the file and the reader, and the caller's process goes on.
 #pragma once
 
 #include <functional>
