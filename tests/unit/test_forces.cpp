@@ -523,6 +523,64 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
   }
 }
 
+// A stepped pyramid numbered along z, each step's layers of cells narrower and starting a row
+// later than the one below: the grid passes compute a layer's span of nodes only (from its first
+// node to its last), and a place of a thread's ring of temporaries that held a wider layer is
+// cleared outside the span of the narrower layer that takes it (an empty cell beside the body
+// reads zeros there). States that change from call to call, one workspace on 1 and 2 threads,
+// both models and both laws: the forces of the spring lists.
+TEST(Forces, GridPassesComputeEachLayersSpanOfNodesOnly) {
+  Material damped = notes_material(0.3);
+  damped.stiffness_damping = 1e-4;
+  for (const CellModel cell_model : {CellModel::kBaudet2007, CellModel::kExactBending}) {
+    for (const CellLaw law : {CellLaw::kSprings, CellLaw::kNeoHookean}) {
+      LatticeDesc pyramid;
+      pyramid.cell_size.setConstant(0.01);
+      pyramid.materials = {damped};
+      pyramid.model = cell_model;
+      pyramid.law = law;
+      for (int z = 0; z < 12; ++z) {
+        const int inset = z / 3;  // 8 x 8 cells, then 6 x 6, 4 x 4, 2 x 2, three layers each
+        for (int y = inset; y < 8 - inset; ++y) {
+          for (int x = inset; x < 8 - inset; ++x) pyramid.cells.push_back({x, y, z});
+        }
+      }
+      Result<Model> built = build_model(pyramid);
+      ASSERT_TRUE(built.ok()) << built.message();
+      const Model& model = built.value();
+      const std::string name =
+          std::string(cell_model == CellModel::kBaudet2007 ? "paper" : "exact-bending") + ", " + cell_law_name(law);
+      ASSERT_TRUE(uses_grid_passes(model)) << name;
+      ASSERT_EQ(model.major_axis, 2) << name;
+      const std::shared_ptr<const GridLayout> grid = build_grid_layout(model);
+      ASSERT_NE(grid, nullptr);
+      // the points the passes compute, of 9 x 9 x 13: in layers of points 0-3 all 81 (the first
+      // node at row 0, x 0, the last at row 8, x 8), then 3 layers each from row i, x i to row
+      // 8 - i, x 8 - i, for insets i = 1, 2, 3: 9 (8 - 2i) + 8 - 2i + 1 points
+      int spanned = 0;
+      for (const PointSpan& span : grid->layer_spans) spanned += span.end - span.begin;
+      EXPECT_EQ(spanned, 4 * 81 + 3 * (61 + 41 + 21)) << name;
+      EXPECT_EQ(grid->layer_spans.back().begin, 3 * 9 + 3) << name;
+
+      Loads loads;
+      loads.gravity = {0, 0, -9.81};
+      ForceWorkspace grid_ws, lists_ws;
+      for (int call = 0; call < 4; ++call) {
+        State state = rest_state(model);  // a new state each call
+        state.positions = test::perturbed(model, 1e-3, 11 + call);
+        state.velocities = test::perturbed(model, 0.1, 21 + call) - model.rest_positions;
+        const int threads = 1 + call % 2;
+        Eigen::Matrix3Xd by_grid, by_lists;
+        compute_forces(model, state, loads, ForceOptions{true, threads}, grid_ws, by_grid);
+        compute_forces(model, state, loads, on_spring_lists(ForceOptions{true, 1}), lists_ws, by_lists);
+        ASSERT_TRUE(by_grid.allFinite()) << name;
+        EXPECT_LT((by_grid - by_lists).cwiseAbs().maxCoeff(), 1e-12 * by_lists.cwiseAbs().maxCoeff())
+            << name << ", call " << call << ", " << threads << " threads";
+      }
+    }
+  }
+}
+
 // Whether the OpenMP runtime gives a region the `threads` it asks for (not with OMP_DYNAMIC or a
 // lower OMP_THREAD_LIMIT): given fewer, the grid passes fall back to an even split for the
 // threads they get, and the tests of the planned splits would pass without running them.

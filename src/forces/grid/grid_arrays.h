@@ -5,6 +5,7 @@
 // bodies: the grid passes").
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -53,10 +54,13 @@ constexpr int kRingPlaces = kRingLayers + 1;
 // A layer's values of one slot, index i for point layer * stride_z + i. The grid's slots run on
 // through the other layers; a ring's hold their layer, and zeros a row and a point beyond it on
 // both sides (the in-layer reach of a spring or a cell); layers below the grid read as zeros.
+// The passes write a layer's span of nodes only (GridLayout::layer_spans): a ring's place holds
+// zeros outside the span of the layer it holds, which is what a spring or cell of the body reads
+// there (a place taken by another layer first clears what the one before wrote outside its span).
 class LayerArrays {
  public:
-  LayerArrays(const GridLayout& grid, double* grid_arrays, const double* zeros, double* ring)
-      : grid_(grid), grid_arrays_(grid_arrays), zeros_(zeros), ring_(ring) {}
+  LayerArrays(const GridLayout& grid, double* grid_arrays, const double* zeros, double* ring, double* held)
+      : grid_(grid), grid_arrays_(grid_arrays), zeros_(zeros), ring_(ring), held_(held) {}
 
   /// `slot` at the points g + step of layer `layer` (step in cells along x, y, z).
   [[gnu::always_inline]] const double* in(int slot, int layer,
@@ -71,6 +75,7 @@ class LayerArrays {
   /// Only layers of the grid are written (the passes return for the layers beyond it).
   [[gnu::always_inline]] double* out(int slot, int layer) const {
     CUBESPRING_ASSERT(layer >= 0);
+    if (slot >= kGridSlots && held_[ring_place(layer)] != layer) hold(layer);
     return place(slot, layer);
   }
 
@@ -89,8 +94,24 @@ class LayerArrays {
       const std::size_t point = grid_.padding + static_cast<std::size_t>(layer) * grid_.stride_z;
       return grid_arrays_ + grid_stride(grid_) * slot + point;
     }
-    const int ring_place = layer == grid_.points.z() - 1 ? kRingLayers : layer % kRingLayers;
-    return ring_ + layer_stride(grid_) * kLayerSlots * static_cast<std::size_t>(ring_place) + ring_offset(slot);
+    return ring_ + layer_stride(grid_) * kLayerSlots * static_cast<std::size_t>(ring_place(layer)) + ring_offset(slot);
+  }
+  int ring_place(int layer) const { return layer == grid_.points.z() - 1 ? kRingLayers : layer % kRingLayers; }
+  // Gives `layer` its place: zeros where the layer held there before wrote outside its span.
+  void hold(int layer) const {
+    const int place_index = ring_place(layer);
+    const double before = held_[place_index];
+    held_[place_index] = layer;
+    if (before < 0.0) return;  // the zeros the place was first set to
+    const PointSpan was = grid_.layer_spans[static_cast<std::size_t>(before)];
+    const PointSpan now = grid_.layer_spans[static_cast<std::size_t>(layer)];
+    const int left_end = std::max(was.begin, std::min(was.end, now.begin));
+    const int right_begin = std::min(was.end, std::max(was.begin, now.end));
+    for (int slot = kGridSlots; slot < kSlots; ++slot) {
+      double* values = place(slot, layer);
+      std::fill(values + was.begin, values + left_end, 0.0);
+      std::fill(values + right_begin, values + was.end, 0.0);
+    }
   }
   // where a slot's values begin in a layer of the ring
   std::size_t ring_offset(int slot) const {
@@ -101,6 +122,7 @@ class LayerArrays {
   double* grid_arrays_;
   const double* zeros_;
   double* ring_;
+  double* held_;  // the layer each place of the ring holds (-1: none yet)
 };
 
 // The scratch vector: the grid's slots, a layer of zeros (every slot), then a ring per thread.
@@ -109,9 +131,11 @@ class GridScratch {
   GridScratch(const GridLayout& grid, int rings, std::vector<double>& scratch) : grid_(grid) {
     const std::size_t layer = LayerArrays::layer_stride(grid) * kLayerSlots;
     const std::size_t rings_and_zeros = 1 + static_cast<std::size_t>(rings) * kRingPlaces;
-    const std::size_t size = LayerArrays::grid_stride(grid) * kGridSlots + layer * rings_and_zeros;
+    held_offset_ = LayerArrays::grid_stride(grid) * kGridSlots + layer * rings_and_zeros;
+    const std::size_t size = held_offset_ + static_cast<std::size_t>(rings) * kRingPlaces;
     if (scratch.size() != size) {
       scratch.assign(size, 0.0);  // the paddings and the points outside the body stay as set here
+      std::fill(scratch.begin() + static_cast<std::ptrdiff_t>(held_offset_), scratch.end(), -1.0);
       base_ = scratch.data();
       for (int axis = 0; axis < 3; ++axis) {
         double* position = arrays(0).out(kPosition + axis, 0);
@@ -125,12 +149,14 @@ class GridScratch {
     double* zeros = base_ + LayerArrays::grid_stride(grid_) * kGridSlots;
     const std::size_t ring_size = LayerArrays::layer_stride(grid_) * kRingPlaces * kLayerSlots;
     double* first_ring = zeros + LayerArrays::layer_stride(grid_) * kLayerSlots;
-    return LayerArrays(grid_, base_, zeros, first_ring + ring_size * static_cast<std::size_t>(ring));
+    return LayerArrays(grid_, base_, zeros, first_ring + ring_size * static_cast<std::size_t>(ring),
+                       base_ + held_offset_ + static_cast<std::size_t>(ring) * kRingPlaces);
   }
 
  private:
   const GridLayout& grid_;
   double* base_ = nullptr;
+  std::size_t held_offset_ = 0;  // where each ring's held layers are kept, after the rings
 };
 
 }  // namespace cubespring

@@ -1,8 +1,8 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Four passes over the grid's points, each a loop over whole z-layers of contiguous points that
-// the compiler vectorises (compiled with -fopenmp-simd, -fno-math-errno and
-// -fno-trapping-math, src/CMakeLists.txt):
+// Four passes over the grid's points, each a loop over a z-layer's contiguous points (from its
+// first node to its last: GridLayout::layer_spans) that the compiler vectorises (compiled with -fopenmp-simd,
+// -fno-math-errno and -fno-trapping-math, src/CMakeLists.txt):
 //   1. springs: length, length rate, own tension; the edges family by family, keeping their unit
 //      vector; the 4 diagonals of a cell at once (no correction: their force), from its 8
 //      corners, which also give the signed volume of its mean edge vectors -> crushed cells
@@ -43,8 +43,12 @@
 namespace cubespring {
 namespace {
 
-// The points of a z-layer that a loop over its first `rows` y-rows covers (whole rows).
-inline int layer_points(const GridLayout& grid, int rows) { return rows * grid.stride_y; }
+// The points a pass computes in the first `rows` y-rows of a z-layer: the layer's span of nodes
+// (GridLayout::layer_spans) within them.
+inline PointSpan layer_points(const GridLayout& grid, int slab, int rows) {
+  const PointSpan& span = grid.layer_spans[static_cast<std::size_t>(slab)];
+  return {span.begin, std::max(span.begin, std::min(span.end, rows * grid.stride_y))};
+}
 // A per-point array of the layout (no padding) from the first point of layer `slab`.
 inline const double* from_layer(const std::vector<double>& values, const GridLayout& grid, int slab) {
   return values.data() + static_cast<std::size_t>(slab) * grid.stride_z;
@@ -61,7 +65,7 @@ using Clock = std::chrono::steady_clock;
 template <bool kWithRate, bool kKeepVector, bool kUniform>
 CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
-  const int count = layer_points(grid, family.rows);
+  const PointSpan points = layer_points(grid, slab, family.rows);
   const double* __restrict x = a.in(kPosition, slab);
   const double* __restrict y = a.in(kPosition + 1, slab);
   const double* __restrict z = a.in(kPosition + 2, slab);
@@ -91,7 +95,7 @@ CUBESPRING_VECTOR_CLONES void measure_edges(const GridLayout& grid, int f, int s
   const double degenerate = kDegenerateLengthFraction * rest;
   const int from = family.from, to = family.to;
 #pragma omp simd
-  for (int g = 0; g < count; ++g) {
+  for (int g = points.begin; g < points.end; ++g) {
     const double ex = x[g + to] - x[g + from];
     const double ey = y[g + to] - y[g + from];
     const double ez = z[g + to] - z[g + from];
@@ -171,7 +175,7 @@ inline double twist_coefficient_of_4(double lower_4, double upper_4, double stif
 template <bool kWithRate, bool kTwist, bool kUniform>
 CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab, const LayerArrays& a) {
   constexpr int d0 = kEdgeFamilies;  // diagonal k is family d0 + k, from corner k to corner 7 - k
-  const int count = layer_points(grid, grid.cell_rows);
+  const PointSpan points = layer_points(grid, slab, grid.cell_rows);
   const int sy = grid.stride_y, sz = grid.stride_z;
   const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};  // corner c at g + step[c]
   const double* position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
@@ -202,7 +206,7 @@ CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab,
   const double h = grid.cell_size.x();
   int crushed = 0;
 #pragma omp simd reduction(+ : crushed)
-  for (int g = 0; g < count; ++g) {
+  for (int g = points.begin; g < points.end; ++g) {
     double d[4][3];   // diagonal k's vector, corner 7 - k minus corner k
     double dv[4][3];  // and its velocity difference
     // twist: 4 x the dot products of the mean in-plane edge vectors of the faces normal to x, y,
@@ -277,7 +281,7 @@ CUBESPRING_VECTOR_CLONES int measure_diagonals(const GridLayout& grid, int slab,
 // values (its loads from memory were most of its time).
 template <bool kWithRate, bool kUniform>
 CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
-  const int count = layer_points(grid, grid.cell_rows);
+  const PointSpan points = layer_points(grid, slab, grid.cell_rows);
   const Eigen::Array3d inverse_edge_sum = (kEdgesPerAxis * grid.cell_size.array()).inverse();
   const Eigen::Array3d tension_per_stress = grid.cell_size.prod() * inverse_edge_sum;
   const double ix = inverse_edge_sum.x(), iy = inverse_edge_sum.y(), iz = inverse_edge_sum.z();
@@ -299,7 +303,7 @@ CUBESPRING_VECTOR_CLONES void cell_pass(const GridLayout& grid, int slab, const 
   double* __restrict tension_y = a.out(kCellTension + 1, slab);
   double* __restrict tension_z = a.out(kCellTension + 2, slab);
 #pragma omp simd
-  for (int g = 0; g < count; ++g) {
+  for (int g = points.begin; g < points.end; ++g) {
     double ex = mean_edge_strain(edge_sum(lx, g), ix);
     double ey = mean_edge_strain(edge_sum(ly, g), iy);
     double ez = mean_edge_strain(edge_sum(lz, g), iz);
@@ -358,7 +362,7 @@ template <class Constants>
 // elastic step 1.4 times as long).
 template <bool kUniform>
 CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
-  const int count = layer_points(grid, grid.cell_rows);
+  const PointSpan points = layer_points(grid, slab, grid.cell_rows);
   const int sy = grid.stride_y, sz = grid.stride_z;
   const int step[8] = {0, 1, sy, 1 + sy, sz, 1 + sz, sy + sz, 1 + sy + sz};  // corner c at g + step[c]
   const double* const position[3] = {a.in(kPosition, slab), a.in(kPosition + 1, slab), a.in(kPosition + 2, slab)};
@@ -369,7 +373,8 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int 
   if constexpr (kUniform) {
     const NeoHookeanConstants& uniform = grid.law_constants.front();
 #pragma omp simd
-    for (int g = 0; g < count; ++g) neo_hookean_cell_at(g, uniform, law[g] >= 0 ? 0.25 : 0.0, position, step, out);
+    for (int g = points.begin; g < points.end; ++g)
+      neo_hookean_cell_at(g, uniform, law[g] >= 0 ? 0.25 : 0.0, position, step, out);
   } else {
     const GridLayout::LawCells& cells = grid.law_cells;
     const double* __restrict c10 = cells.c10.data() + layer;
@@ -384,7 +389,7 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int 
       double rest_volume, c10, half_bulk, barrier, diagonal_stiffness, diagonal_length;
     };
 #pragma omp simd
-    for (int g = 0; g < count; ++g) {
+    for (int g = points.begin; g < points.end; ++g) {
       const PointConstants constants{{first.cell_size[0], first.cell_size[1], first.cell_size[2]},
                                      first.rest_volume,
                                      c10[g],
@@ -402,7 +407,7 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_cell_pass(const GridLayout& grid, int 
 CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   if (slab >= family.slabs) return;
-  const int count = layer_points(grid, family.rows);
+  const PointSpan points = layer_points(grid, slab, family.rows);
   const Eigen::Vector3i b = unit((f + 1) % 3), c = unit((f + 2) % 3);
   const double* __restrict at_0 = a.in(kCellTension + f, slab);
   const double* __restrict at_b = a.in(kCellTension + f, slab, -b);
@@ -413,7 +418,7 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
   double* __restrict fy = a.out(kFamilyForce + 3 * f + 1, slab);
   double* __restrict fz = a.out(kFamilyForce + 3 * f + 2, slab);
 #pragma omp simd
-  for (int g = 0; g < count; ++g) {
+  for (int g = points.begin; g < points.end; ++g) {
     const double total = own[g] + ((at_0[g] + at_b[g]) + (at_c[g] + at_bc[g]));
     fx[g] *= total;
     fy[g] *= total;
@@ -426,7 +431,7 @@ CUBESPRING_VECTOR_CLONES void edge_tension_pass(const GridLayout& grid, int f, i
 CUBESPRING_VECTOR_CLONES void neo_hookean_edge_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   if (slab >= family.slabs) return;
-  const int count = layer_points(grid, family.rows);
+  const PointSpan points = layer_points(grid, slab, family.rows);
   const Eigen::Vector3i b = unit((f + 1) % 3), c = unit((f + 2) % 3);
   for (int k = 0; k < 3; ++k) {
     const int slot = kCellNeoHookean + 3 * f + k;
@@ -436,7 +441,7 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_edge_pass(const GridLayout& grid, int 
     const double* __restrict at_bc = a.in(slot, slab, -b - c);
     double* __restrict out = a.out(kFamilyForce + 3 * f + k, slab);
 #pragma omp simd
-    for (int g = 0; g < count; ++g) out[g] += (at_0[g] + at_b[g]) + (at_c[g] + at_bc[g]);
+    for (int g = points.begin; g < points.end; ++g) out[g] += (at_0[g] + at_b[g]) + (at_c[g] + at_bc[g]);
   }
 }
 
@@ -444,13 +449,13 @@ CUBESPRING_VECTOR_CLONES void neo_hookean_edge_pass(const GridLayout& grid, int 
 // faces normal to x, y, z (or the first `normals` of them) at the points of one z-layer; pass 3b
 // reads two of these per face normal instead of four coefficients, for each component.
 CUBESPRING_VECTOR_CLONES void face_twist_pass(const GridLayout& grid, int slab, const LayerArrays& a, int normals) {
-  const int count = layer_points(grid, grid.points.y());
+  const PointSpan points = layer_points(grid, slab, grid.points.y());
   for (int d = 0; d < normals; ++d) {
     const double* __restrict own = a.in(kCellTwist + d, slab);
     const double* __restrict behind = a.in(kCellTwist + d, slab, -unit(d));
     double* __restrict difference = a.out(kFaceTwist + d, slab);
 #pragma omp simd
-    for (int g = 0; g < count; ++g) difference[g] = 0.5 * (behind[g] - own[g]);
+    for (int g = points.begin; g < points.end; ++g) difference[g] = 0.5 * (behind[g] - own[g]);
   }
 }
 
@@ -460,7 +465,7 @@ CUBESPRING_VECTOR_CLONES void face_twist_pass(const GridLayout& grid, int slab, 
 CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int slab, const LayerArrays& a) {
   const SpringFamily& family = grid.families[f];
   if (slab >= family.slabs) return;
-  const int count = layer_points(grid, family.rows);
+  const PointSpan points = layer_points(grid, slab, family.rows);
   const Eigen::Vector3i e = unit(f);
   // the two faces' normals d and third axes o: (d1, d2) and (d2, d1)
   const int d1 = (f + 1) % 3, d2 = (f + 2) % 3;
@@ -488,7 +493,7 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
     const double* __restrict m2_1e = m2_x[3] + component;
     double* __restrict out = force_x + component;
 #pragma omp simd
-    for (int g = 0; g < count; ++g) {
+    for (int g = points.begin; g < points.end; ++g) {
       // normal d1: faces at g and g - s2; normal d2: faces at g and g - s1
       const double near1 = near1_at[g], far1 = far1_at[g], near2 = near2_at[g], far2 = far2_at[g];
       out[g] += (near1 * (m1_0[g] + m1_e[g]) + far1 * (m1_2[g] + m1_2e[g])) +
@@ -500,7 +505,7 @@ CUBESPRING_VECTOR_CLONES void twist_edge_pass(const GridLayout& grid, int f, int
 // Pass 4 on one z-layer of points: each family's springs that start at g (at g - from) pull
 // g towards their other end; those that end at g (at g - to) pull it back.
 CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, const LayerArrays& a) {
-  const int count = layer_points(grid, grid.points.y());
+  const PointSpan points = layer_points(grid, slab, grid.points.y());
   const double* starting_x[kSpringFamilies];
   const double* ending_x[kSpringFamilies];
   for (int f = 0; f < kSpringFamilies; ++f) {
@@ -516,7 +521,7 @@ CUBESPRING_VECTOR_CLONES void gather_pass(const GridLayout& grid, int slab, cons
     }
     double* __restrict force = a.out(kForce + axis, slab);
 #pragma omp simd
-    for (int g = 0; g < count; ++g) {
+    for (int g = points.begin; g < points.end; ++g) {
       double sum = 0.0;
 #pragma GCC unroll 7
       for (int f = 0; f < kSpringFamilies; ++f) sum += starting[f][g] - ending[f][g];

@@ -149,6 +149,13 @@ std::shared_ptr<const GridLayout> build_grid_layout(const Model& model, double m
     return nullptr;
   }
 
+  grid.layer_spans.assign(static_cast<std::size_t>(grid.points.z()), PointSpan{});
+  for (const int point : grid.point_of_node) {  // in increasing order
+    const int in_layer = point % grid.stride_z;
+    PointSpan& span = grid.layer_spans[static_cast<std::size_t>(point / grid.stride_z)];
+    span = span.begin == span.end ? PointSpan{in_layer, in_layer + 1} : PointSpan{span.begin, in_layer + 1};
+  }
+
   const int step_of_axis[3] = {1, grid.stride_y, grid.stride_z};
   for (int f = 0; f < kSpringFamilies; ++f) {
     SpringFamily& family = grid.families[f];

@@ -18,8 +18,14 @@
 
 namespace cubespring {
 
+/// Consecutive points of a z-layer, [begin, end) from its first point.
+struct PointSpan {
+  int begin = 0, end = 0;
+};
+
 /// Springs of one direction: those from point g + from to point g + to, for the points g of
-/// `slabs` z-layers, each its first `rows` y-rows of the grid (whole rows, every x).
+/// `slabs` z-layers, each its first `rows` y-rows of the grid (whole rows, every x; the passes
+/// compute those in the layer's span, layer_spans).
 /// Families 0-2 are the x, y and z edges (indexed by their first node), 3-6 the body diagonals
 /// from corner k to corner 7 - k of the cell whose corner 0 is g.
 struct SpringFamily {
@@ -53,7 +59,13 @@ struct GridLayout {
   /// without bounds checks.
   int padding = 0;
   std::vector<int> point_of_node;  ///< model node -> grid point, increasing
-  Eigen::Matrix3Xd rest_points;    ///< rest position of every point [m]
+  /// The points of each z-layer the passes compute: from its first node to its last (empty
+  /// where the layer has none). Every spring, cell and face of the body starts at one of its
+  /// nodes, so the passes skip the points of the box before and after them (a sixth of the demo
+  /// liver's box, a third of the 4 mm liver's; the rows between stay: a loop over one long span
+  /// vectorises, a loop over each row's short span of nodes was slower than the whole layer).
+  std::vector<PointSpan> layer_spans;
+  Eigen::Matrix3Xd rest_points;  ///< rest position of every point [m]
   std::array<SpringFamily, kSpringFamilies> families;
 
   // cells, indexed by the point of their corner 0 (zero outside the body)
