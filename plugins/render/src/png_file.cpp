@@ -28,10 +28,13 @@ Status write_png(const Image& image, const std::string& path) {
     return Status::error(path + ": cannot open for writing: " + std::strerror(errno));
   }
 
-  // no time or text chunks are written and libpng's compression settings are fixed (zlib level 6,
-  // adaptive filters), so equal pixels give equal bytes for one libpng and zlib build
+  // no time or text chunks are written and libpng's compression settings are fixed, so equal
+  // pixels give equal bytes for one libpng and zlib build. Its fast settings (zlib level 3, no
+  // filters): a demo frame of 1280x720 took 44 ms at the default ones (level 6, adaptive
+  // filters), more than drawing it (31 ms), and takes 7 ms, its file 290 kB instead of 175 kB.
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
+  png.flags = PNG_IMAGE_FLAG_FAST;
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;
