@@ -50,4 +50,23 @@ double max_stable_time_step(const Model& model, FrequencyBound bound = Frequency
 double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positions);
 inline constexpr double kThickEnough = 0.5;
 
+/// Each cell's stable explicit step at rest [s], as the thin-cell factor needs it: the step
+/// stable_step_for_frequency() gives the largest Gershgorin bound, (1/m) sum_j |K_ij| over a
+/// node's rows, among the nodes of the cell and of the cells around it (those sharing a node with
+/// it), with the nodes' mass. A thin cell's nodes move against their neighbours', whose margin
+/// the factor counts on too: with the cell's own 8 nodes alone, a 4 mm liver blew up under a
+/// probe. Inertia that selective mass scaling added is left out, as the nodes that took it keep
+/// no margin beyond the target step. The least of these steps is max_stable_time_step() of the
+/// body without added inertia; soft tissue two cells or more away from a stiff inclusion has a
+/// longer one, so a cell that a probe squeezes thin there is not held to the inclusion's step.
+/// Throws as max_frequency() does.
+Eigen::VectorXd cell_stable_time_steps(const Model& model);
+
+/// The longest step [s] that the cells thinner than kThickEnough allow in the state `positions`
+/// [m]: the least over them of each one's factor (as compressed_step_factor() finds it for the
+/// thinnest cell; 0.2 for a flat or inverted cell) times its entry of `cell_steps` [s]
+/// (cell_stable_time_steps(), times a safety factor). Infinity when no cell is thin, and for the
+/// springs law. Throws std::invalid_argument when `cell_steps` does not have one entry per cell.
+double compressed_time_step(const Model& model, const Eigen::Matrix3Xd& positions, const Eigen::VectorXd& cell_steps);
+
 }  // namespace cubespring

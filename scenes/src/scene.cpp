@@ -77,8 +77,9 @@ Status read_box(const JsonFields& fields, Box& box) {
 }
 
 Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSpec& organ) {
-  if (Status s = fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "law", "materials",
-                                    "fixed_regions", "friction", "face_contacts", "contact_offset", "max_added_mass"});
+  if (Status s =
+          fields.check_keys({"mesh", "scale", "cell_size", "cells_across", "model", "law", "materials", "fixed_regions",
+                             "friction", "face_contacts", "contact_offset", "max_added_mass", "time_step_safety"});
       !s) {
     return s;
   }
@@ -124,6 +125,12 @@ Status read_organ(const JsonFields& fields, const SceneContext& context, OrganSp
   if (Status s = fields.non_negative("friction", organ.friction); !s) return s;
   if (Status s = fields.non_negative("contact_offset", organ.contact_offset); !s) return s;
   if (Status s = fields.fraction("max_added_mass", organ.max_added_mass); !s) return s;
+  if (Status s = fields.positive("time_step_safety", organ.time_step_safety); !s) return s;
+  if (organ.time_step_safety > 1.0) {
+    std::ostringstream got;
+    got << organ.time_step_safety;
+    return fields.error("time_step_safety", "must be at most 1 (of the stable step), got " + got.str());
+  }
   return fields.boolean("face_contacts", organ.face_contacts);
 }
 

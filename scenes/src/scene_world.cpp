@@ -110,6 +110,7 @@ Status SceneWorld::build_organ(const Scene& scene) {
   settings.contact.face_contacts = spec.face_contacts;
   settings.contact.offset = spec.contact_offset;
   settings.max_added_mass = spec.max_added_mass;
+  settings.time_step_safety = spec.time_step_safety;
   Result<std::unique_ptr<bullet::SoftBody>> body = bullet::SoftBody::create(settings);
   if (!body) return Status::error("organ: " + body.message());
   organ_ = std::move(body).value();

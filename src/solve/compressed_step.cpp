@@ -1,9 +1,13 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// compressed_step_factor(): the thinnest cell of a body, which the Bullet plugin looks for every
-// few explicit sub-steps (stable_time_step.h says why a thin cell shortens the step).
+// compressed_step_factor() and compressed_time_step(): the thin cells of a body, which the Bullet
+// plugin looks for every few explicit sub-steps (stable_time_step.h says why a thin cell shortens
+// the step).
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "cubespring/stable_time_step.h"
 #include "forces/grid/vector_clones.h"
@@ -82,7 +86,7 @@ CUBESPRING_VECTOR_CLONES BlockResult thickness_squares(const Model& model, const
       least = thinner ? thickness_square : least;
       least_axis = thinner ? a : least_axis;
     }
-    square[i] = least;
+    square[i] = volume > 0.0 ? least : 0.0;  // flat, inside out or not a number: as thin as can be
     axis[i] = least_axis;
   }
   return {flat != 0};
@@ -114,6 +118,28 @@ double compressed_step_factor(const Model& model, const Eigen::Matrix3Xd& positi
           ? 1.0
           : std::min(1.0, effective_thickness(model, cell_frame(model, positions, thinnest_cell), thinnest_axis));
   return std::clamp(thinnest / kThickEnough, kLeast, 1.0);
+}
+
+double compressed_time_step(const Model& model, const Eigen::Matrix3Xd& positions, const Eigen::VectorXd& cell_steps) {
+  if (cell_steps.size() != model.num_cells()) {
+    throw std::invalid_argument("compressed_time_step: " + std::to_string(cell_steps.size()) + " cell steps for " +
+                                std::to_string(model.num_cells()) + " cells");
+  }
+  double least = std::numeric_limits<double>::infinity();
+  if (model.cell_law == CellLaw::kSprings) return least;
+  constexpr double kThinSquare = kThickEnough * kThickEnough;
+  double square[kBlock];
+  int axis[kBlock];
+  for (int first = 0; first < model.num_cells(); first += kBlock) {
+    const int count = std::min(kBlock, model.num_cells() - first);
+    (void)thickness_squares(model, positions.data(), first, count, square, axis);
+    for (int i = 0; i < count; ++i) {
+      if (square[i] >= kThinSquare) continue;  // keeps its rest step, which the body's sub-step is within
+      const double factor = std::max(std::sqrt(square[i]) / kThickEnough, kLeast);
+      least = std::min(least, factor * cell_steps[first + i]);
+    }
+  }
+  return least;
 }
 
 }  // namespace cubespring

@@ -101,6 +101,30 @@ double max_frequency(const Model& model, FrequencyBound bound) {
   return std::sqrt(std::min(gershgorin, lanczos_largest_eigenvalue(stiffness, model.inertia())));
 }
 
+Eigen::VectorXd cell_stable_time_steps(const Model& model) {
+  const Eigen::VectorXd row_sums = node_row_sums(model);
+  const auto& cells = model.cell_nodes;
+  // the largest bound of each cell's nodes, then of the nodes of each cell's cells, then of the
+  // cells around each cell (those that share a node with it)
+  Eigen::VectorXd own(model.num_cells());
+  for (int c = 0; c < model.num_cells(); ++c) {
+    own[c] = 0.0;
+    for (const int node : cells[static_cast<std::size_t>(c)])
+      own[c] = std::max(own[c], row_sums[node] / model.mass[node]);
+  }
+  Eigen::VectorXd near_node = Eigen::VectorXd::Zero(model.num_nodes());
+  for (int c = 0; c < model.num_cells(); ++c) {
+    for (const int node : cells[static_cast<std::size_t>(c)]) near_node[node] = std::max(near_node[node], own[c]);
+  }
+  Eigen::VectorXd steps(model.num_cells());
+  for (int c = 0; c < model.num_cells(); ++c) {
+    double bound = 0.0;
+    for (const int node : cells[static_cast<std::size_t>(c)]) bound = std::max(bound, near_node[node]);
+    steps[c] = stable_step_for_frequency(model, std::sqrt(bound));
+  }
+  return steps;
+}
+
 double max_stable_time_step(const Model& model, FrequencyBound bound) {
   return stable_step_for_frequency(model, max_frequency(model, bound));
 }

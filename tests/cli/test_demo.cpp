@@ -656,6 +656,8 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
        "\"colour\" in \"render.lights[0]\" must have no negative channel"},
       {"{\"organ\": {\"contact_offset\": -0.001}}", "\"contact_offset\" in \"organ\" must be >= 0, got -0.001"},
       {"{\"organ\": {\"max_added_mass\": 1.5}}", "\"max_added_mass\" in \"organ\" must be in [0, 1], got 1.5"},
+      {"{\"organ\": {\"time_step_safety\": 0}}", "\"time_step_safety\" in \"organ\" must be > 0, got 0"},
+      {"{\"organ\": {\"time_step_safety\": 2}}", "\"time_step_safety\" in \"organ\" must be at most 1"},
       // numbers too large to simulate: every torque came out NaN, or the organ stopped naming loads.gravity
       {"{\"tools\": [{\"capsule\": {\"radius\": 0.0025, \"length\": 1e308}}]}",
        "\"length\" in \"tools[0].capsule\" times the scale is 1e+308 m, more than a tool's 100 m"},
@@ -807,6 +809,25 @@ TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   const ToolRun endless = run_tool("bench-render --seconds nan");
   EXPECT_NE(endless.exit_code, 0);
   EXPECT_NE(endless.out.find("--seconds: 'nan' is not a finite number > 0"), std::string::npos) << endless.out;
+}
+
+// organ.time_step_safety: the organ's sub-step is that fraction of its stable step (0.9 unless the
+// scene says), so halving it halves the sub-step that bench-render reports.
+TEST(DemoCli, TimeStepSafetyIsTheOrgansSubStepOverItsStableStep) {
+  TempDir dir;
+  const auto sub_step = [&](const std::string& safety) {
+    const fs::path path = dir.path() / ("scene" + safety + ".json");
+    std::ofstream(path) << "{\"organ\": {\"mesh\": \"" << CUBESPRING_DATA_DIR << "/liver.obj\", \"cell_size\": 0.02"
+                        << (safety.empty() ? "" : ", \"time_step_safety\": " + safety) << "}, \"duration\": 0.02}";
+    const ToolRun run =
+        run_tool("bench-render --frames 1 --seconds 0.004 --sizes 16x16 --json " + path.string(), false);
+    EXPECT_EQ(run.exit_code, 0) << run.out;
+    return run.exit_code == 0 ? nlohmann::json::parse(run.out)["organ"]["sub_step"].get<double>() : 0.0;
+  };
+  const double default_step = sub_step(""), at_09 = sub_step("0.9"), at_045 = sub_step("0.45");
+  ASSERT_GT(default_step, 0.0);
+  EXPECT_EQ(at_09, default_step);
+  EXPECT_NEAR(at_045, 0.5 * default_step, 1e-12 * default_step);
 }
 #endif  // CUBESPRING_HAS_BENCHMARKS
 

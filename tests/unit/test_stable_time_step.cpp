@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -222,6 +224,90 @@ TEST(CompressedStepFactor, IsTheThinnestOfManyCells) {
   lost = model.rest_positions;  // and in the last block
   lost(2, model.num_nodes() - 1) = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(compressed_step_factor(model, lost), 0.2);
+}
+
+// A bar of 7 cubes of 5 kPa tissue along x whose first is a 40 kPa inclusion, and the same bar
+// all soft. A cell's rest step comes from the Gershgorin bounds of the nodes of the cell and of the
+// cells around it: cell x reads the nodes x - 1 .. x + 2, so the inclusion (nodes 0 and 1, whose
+// rows hold its stiffness) holds cells 0 to 2 and no cell from 3 on, which have the steps of the
+// all-soft bar to the bit. The least is the body's step.
+TEST(CellStableTimeSteps, ACellTwoCellsFromAStiffInclusionKeepsTheStepOfSoftTissue) {
+  Material soft;
+  soft.young_modulus = 5e3;
+  soft.poisson_ratio = 0.45;
+  Material stiff = soft;
+  stiff.young_modulus = 4e4;
+  LatticeDesc all_soft = box_lattice({7, 2, 2}, Eigen::Vector3d::Constant(0.01), soft);
+  all_soft.law = CellLaw::kNeoHookean;
+  all_soft.model = CellModel::kExactBending;
+  LatticeDesc inclusion = all_soft;
+  inclusion.materials.push_back(stiff);
+  for (const Eigen::Vector3i& cell : inclusion.cells) inclusion.cell_material.push_back(cell.x() == 0 ? 1 : 0);
+  const Model model = build_model(inclusion).value();
+  const Model soft_model = build_model(all_soft).value();
+  const Eigen::VectorXd steps = cell_stable_time_steps(model);
+  const Eigen::VectorXd soft_steps = cell_stable_time_steps(soft_model);
+  ASSERT_EQ(steps.size(), model.num_cells());
+  EXPECT_EQ(steps.minCoeff(), max_stable_time_step(model));
+  EXPECT_EQ(soft_steps.minCoeff(), max_stable_time_step(soft_model));
+  // the least step at each x (cells come in columns of 2 x 2 along x)
+  std::vector<double> at_x(7, std::numeric_limits<double>::infinity());
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const int x = model.cell_grid_index[static_cast<std::size_t>(c)].x();
+    at_x[static_cast<std::size_t>(x)] = std::min(at_x[static_cast<std::size_t>(x)], steps[c]);
+    if (x >= 3) {
+      EXPECT_EQ(steps[c], soft_steps[c]) << "cell " << c << " at x = " << x;
+    }
+  }
+  EXPECT_EQ(at_x[0], steps.minCoeff());
+  EXPECT_EQ(at_x[1], at_x[0]);
+  EXPECT_LT(at_x[2], 0.8 * at_x[3]) << "its neighbour's node 1 bears the inclusion";
+  EXPECT_GT(at_x[3], 1.5 * at_x[0]) << "soft tissue's step, against 40 kPa's";
+}
+
+// The step thin cells allow: each thin cell its factor times its own rest step, the least of
+// them; infinity while none is thin. A cell squeezed to 30% far from the inclusion allows 0.6 of
+// its own step, longer than the inclusion's whole step; beside the inclusion, 0.6 of that.
+TEST(CompressedTimeStep, EachThinCellAllowsItsFactorTimesItsOwnStep) {
+  Material soft;
+  soft.young_modulus = 5e3;
+  soft.poisson_ratio = 0.45;
+  Material stiff = soft;
+  stiff.young_modulus = 4e4;
+  LatticeDesc desc = box_lattice({7, 1, 1}, Eigen::Vector3d::Constant(0.01), soft);
+  desc.law = CellLaw::kNeoHookean;
+  desc.materials.push_back(stiff);
+  for (const Eigen::Vector3i& cell : desc.cells) desc.cell_material.push_back(cell.x() == 0 ? 1 : 0);
+  const Model model = build_model(desc).value();
+  const Eigen::VectorXd steps = cell_stable_time_steps(model);
+  EXPECT_EQ(compressed_time_step(model, model.rest_positions, steps), std::numeric_limits<double>::infinity());
+
+  // cell x's top face lowered to 30% of its height: the thickness across z of that cell (its
+  // neighbours' faces are slanted, thicker than half)
+  const auto squeeze = [&](Eigen::Matrix3Xd x, int cell) {
+    for (int corner = 4; corner < 8; ++corner) x(2, model.cell_nodes[static_cast<std::size_t>(cell)][corner]) = 0.003;
+    return x;
+  };
+  const auto cell_at = [&](int x) {
+    for (int c = 0; c < model.num_cells(); ++c) {
+      if (model.cell_grid_index[static_cast<std::size_t>(c)].x() == x) return c;
+    }
+    return -1;
+  };
+  const int far = cell_at(5), near = cell_at(1);
+  const Eigen::Matrix3Xd far_thin = squeeze(model.rest_positions, far);
+  ASSERT_NEAR(compressed_step_factor(model, far_thin), 0.3 / kThickEnough, 1e-12);
+  EXPECT_NEAR(compressed_time_step(model, far_thin, steps), 0.3 / kThickEnough * steps[far], 1e-12 * steps[far]);
+  EXPECT_GT(compressed_time_step(model, far_thin, steps), steps.minCoeff());
+  const Eigen::Matrix3Xd both_thin = squeeze(far_thin, near);
+  EXPECT_NEAR(compressed_time_step(model, both_thin, steps), 0.3 / kThickEnough * steps[near], 1e-12 * steps[near]);
+  EXPECT_LT(steps[near], steps[far]);
+
+  EXPECT_THROW(compressed_time_step(model, far_thin, steps.head(3)), std::invalid_argument);
+  desc.law = CellLaw::kSprings;  // linear springs: a thin cell is no stiffer
+  const Model springs = build_model(desc).value();
+  EXPECT_EQ(compressed_time_step(springs, far_thin, cell_stable_time_steps(springs)),
+            std::numeric_limits<double>::infinity());
 }
 
 }  // namespace

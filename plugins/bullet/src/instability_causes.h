@@ -16,7 +16,7 @@ namespace cubespring::bullet {
 /// What the plugin knows of an unstable sub-step: its length [s] (the world step split evenly),
 /// the longest it could have been at rest [s], the fraction of the body's stable step that is
 /// (SoftBodySettings::time_step_safety), and the factor thin cells shortened it by
-/// (compressed_step_factor()), and the inertia added to lengthen it, as a fraction of the body's
+/// (SoftBody::planned_sub_step() over it), and the inertia added to lengthen it, as a fraction of the body's
 /// mass (SoftBodySettings::max_added_mass; MassScaling::added_fraction).
 struct SubStepPlan {
   double sub_step = 0.0;

@@ -76,6 +76,10 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
     body->sub_step_ = implicit ? settings.max_implicit_step
                       : scaled ? settings.time_step_safety * body->mass_scaling_.time_step_after
                                : settings.time_step_safety * max_stable_time_step(body->model_);
+    // thin cells shorten it (for the law whose thin cells stiffen), each from its own rest step
+    if (!implicit && body->model_.cell_law != CellLaw::kSprings) {
+      body->cell_rest_steps_ = settings.time_step_safety * cell_stable_time_steps(body->model_);
+    }
   } catch (const std::length_error& too_large) {
     return Status::error(too_large.what());
   }
@@ -122,6 +126,11 @@ Status SoftBody::set_threads(int threads) {
 double SoftBody::unscaled_sub_step() const {
   if (mass_scaling_.nodes == 0) return sub_step_;
   return std::min(sub_step_, time_step_safety_ * mass_scaling_.time_step_before);
+}
+
+double SoftBody::planned_sub_step() const {
+  if (cell_rest_steps_.size() == 0) return sub_step_;
+  return std::min(sub_step_, compressed_time_step(model_, state_.positions, cell_rest_steps_));
 }
 
 void SoftBody::index_vertices_by_node() {

@@ -241,9 +241,9 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     return;
   }
   // explicit sub-steps follow the body's state: a cell squeezed thin takes a shorter step than at
-  // rest (compressed_step_factor), from the step without added inertia (unscaled_sub_step); what
-  // is left of the world step is planned again every few sub-steps, at equal sub-steps (the same
-  // ones as at rest while no cell is thin)
+  // rest, from its own rest step without added inertia (planned_sub_step); what is left of the
+  // world step is planned again every few sub-steps, at equal sub-steps (the same ones as at rest
+  // while no cell is thin)
   const bool explicit_steps = body.step_settings_.integrator != Integrator::kImplicitEuler;
   constexpr int kReplanEvery = 4;
   int remaining = std::max(1, static_cast<int>(needed));
@@ -260,8 +260,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
     if (explicit_steps && k % kReplanEvery == 0) {
       const Clock::time_point planning = Clock::now();
       const double left = step_length - (plan_start + planned * dt);
-      const double factor = compressed_step_factor(body.model_, body.state_.positions);
-      const double allowed = factor * (factor < 1.0 ? body.unscaled_sub_step() : body.sub_step_);
+      const double allowed = body.planned_sub_step();
       body.times_.planning += seconds_since(planning);
       const int wanted = std::max(1, static_cast<int>(std::ceil(left / allowed - 1e-9)));
       if (wanted != remaining) {
@@ -291,10 +290,10 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
       std::string causes;
       if (explicit_steps && report.status == StepStatus::kUnstable) {
         // (the step left the state as it was: the thin cells the plan saw)
-        const double squeezed = compressed_step_factor(body.model_, body.state_.positions);
-        const double rest = squeezed < 1.0 ? body.unscaled_sub_step() : body.sub_step_;
+        const double squeezed = body.planned_sub_step() / body.sub_step_;
         causes = instability_causes(
-            body.model_, {dt, rest, body.time_step_safety_, squeezed, body.mass_scaling_.added_fraction}, tracks);
+            body.model_, {dt, body.sub_step_, body.time_step_safety_, squeezed, body.mass_scaling_.added_fraction},
+            tracks);
       }
       body.stop_message_ =
           "soft body stopped at t = " + std::to_string(time_ + elapsed) + " s: " + report.message + causes;

@@ -52,6 +52,10 @@ struct OrganSpec {
   /// The most inertia, as a fraction of the organ's mass, that the explicit sub-step may give the
   /// nodes limiting it (a stiff tumour's) to be longer (bullet::SoftBodySettings::max_added_mass).
   double max_added_mass = 0.0;
+  /// The explicit sub-step as a fraction of the stable step, in (0, 1]
+  /// (bullet::SoftBodySettings::time_step_safety): lower it to see whether a scene's forces have
+  /// converged in the sub-step.
+  double time_step_safety = 0.9;
 };
 
 struct TableSpec {
