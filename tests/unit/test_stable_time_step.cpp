@@ -226,23 +226,33 @@ TEST(CompressedStepFactor, IsTheThinnestOfManyCells) {
   EXPECT_EQ(compressed_step_factor(model, lost), 0.2);
 }
 
+// A bar of 7 x across x ny x nz cubes of 5 kPa neo-Hookean tissue; with an inclusion, the cells at
+// x = 0 are of 40 kPa.
+LatticeDesc soft_bar(int ny, int nz, bool inclusion) {
+  Material soft;
+  soft.young_modulus = 5e3;
+  soft.poisson_ratio = 0.45;
+  LatticeDesc desc = box_lattice({7, ny, nz}, Eigen::Vector3d::Constant(0.01), soft);
+  desc.law = CellLaw::kNeoHookean;
+  if (inclusion) {
+    Material stiff = soft;
+    stiff.young_modulus = 4e4;
+    desc.materials.push_back(stiff);
+    for (const Eigen::Vector3i& cell : desc.cells) desc.cell_material.push_back(cell.x() == 0 ? 1 : 0);
+  }
+  return desc;
+}
+
 // A bar of 7 cubes of 5 kPa tissue along x whose first is a 40 kPa inclusion, and the same bar
 // all soft. A cell's rest step comes from the Gershgorin bounds of the nodes of the cell and of the
 // cells around it: cell x reads the nodes x - 1 .. x + 2, so the inclusion (nodes 0 and 1, whose
 // rows hold its stiffness) holds cells 0 to 2 and no cell from 3 on, which have the steps of the
 // all-soft bar to the bit. The least is the body's step.
 TEST(CellStableTimeSteps, ACellTwoCellsFromAStiffInclusionKeepsTheStepOfSoftTissue) {
-  Material soft;
-  soft.young_modulus = 5e3;
-  soft.poisson_ratio = 0.45;
-  Material stiff = soft;
-  stiff.young_modulus = 4e4;
-  LatticeDesc all_soft = box_lattice({7, 2, 2}, Eigen::Vector3d::Constant(0.01), soft);
-  all_soft.law = CellLaw::kNeoHookean;
+  LatticeDesc all_soft = soft_bar(2, 2, false);
   all_soft.model = CellModel::kExactBending;
-  LatticeDesc inclusion = all_soft;
-  inclusion.materials.push_back(stiff);
-  for (const Eigen::Vector3i& cell : inclusion.cells) inclusion.cell_material.push_back(cell.x() == 0 ? 1 : 0);
+  LatticeDesc inclusion = soft_bar(2, 2, true);
+  inclusion.model = CellModel::kExactBending;
   const Model model = build_model(inclusion).value();
   const Model soft_model = build_model(all_soft).value();
   const Eigen::VectorXd steps = cell_stable_time_steps(model);
@@ -269,15 +279,7 @@ TEST(CellStableTimeSteps, ACellTwoCellsFromAStiffInclusionKeepsTheStepOfSoftTiss
 // them; infinity while none is thin. A cell squeezed to 30% far from the inclusion allows 0.6 of
 // its own step, longer than the inclusion's whole step; beside the inclusion, 0.6 of that.
 TEST(CompressedTimeStep, EachThinCellAllowsItsFactorTimesItsOwnStep) {
-  Material soft;
-  soft.young_modulus = 5e3;
-  soft.poisson_ratio = 0.45;
-  Material stiff = soft;
-  stiff.young_modulus = 4e4;
-  LatticeDesc desc = box_lattice({7, 1, 1}, Eigen::Vector3d::Constant(0.01), soft);
-  desc.law = CellLaw::kNeoHookean;
-  desc.materials.push_back(stiff);
-  for (const Eigen::Vector3i& cell : desc.cells) desc.cell_material.push_back(cell.x() == 0 ? 1 : 0);
+  LatticeDesc desc = soft_bar(1, 1, true);
   const Model model = build_model(desc).value();
   const Eigen::VectorXd steps = cell_stable_time_steps(model);
   EXPECT_EQ(compressed_time_step(model, model.rest_positions, steps), std::numeric_limits<double>::infinity());
