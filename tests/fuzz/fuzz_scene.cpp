@@ -45,6 +45,8 @@ void check_scene(const cubespring::scene::Scene& scene) {
   check_finite("organ.cell_size", scene.organ.cell_size);
   check_finite("organ.friction", scene.organ.friction);
   check_finite("organ.contact_offset", scene.organ.contact_offset);
+  check_finite("organ.max_added_mass", scene.organ.max_added_mass);
+  check_finite("organ.time_step_safety", scene.organ.time_step_safety);
   for (const auto& [name, material] : scene.organ.materials) {
     check_finite("organ.materials young", material.young_modulus);
     check_finite("organ.materials poisson", material.poisson_ratio);

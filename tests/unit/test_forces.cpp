@@ -527,8 +527,9 @@ TEST(Forces, GridChunksGiveTheSameBitsOnAnyThreadCount) {
 // later than the one below: the grid passes compute a layer's span of nodes only (from its first
 // node to its last), and a place of a thread's ring of temporaries that held a wider layer is
 // cleared outside the span of the narrower layer that takes it (an empty cell beside the body
-// reads zeros there). States that change from call to call, one workspace on 1 and 2 threads,
-// both models and both laws: the forces of the spring lists.
+// reads zeros there). States that change from call to call, one workspace on 1 and 2 threads
+// (the pyramid has points enough for two: each sweeps its own ring, one of them down), both
+// models and both laws: the forces of the spring lists.
 TEST(Forces, GridPassesComputeEachLayersSpanOfNodesOnly) {
   Material damped = notes_material(0.3);
   damped.stiffness_damping = 1e-4;
@@ -539,10 +540,10 @@ TEST(Forces, GridPassesComputeEachLayersSpanOfNodesOnly) {
       pyramid.materials = {damped};
       pyramid.model = cell_model;
       pyramid.law = law;
-      for (int z = 0; z < 12; ++z) {
-        const int inset = z / 3;  // 8 x 8 cells, then 6 x 6, 4 x 4, 2 x 2, three layers each
-        for (int y = inset; y < 8 - inset; ++y) {
-          for (int x = inset; x < 8 - inset; ++x) pyramid.cells.push_back({x, y, z});
+      for (int z = 0; z < 16; ++z) {
+        const int inset = z / 4;  // 10 x 10 cells, then 8 x 8, 6 x 6, 4 x 4, four layers each
+        for (int y = inset; y < 10 - inset; ++y) {
+          for (int x = inset; x < 10 - inset; ++x) pyramid.cells.push_back({x, y, z});
         }
       }
       Result<Model> built = build_model(pyramid);
@@ -554,22 +555,23 @@ TEST(Forces, GridPassesComputeEachLayersSpanOfNodesOnly) {
       ASSERT_EQ(model.major_axis, 2) << name;
       const std::shared_ptr<const GridLayout> grid = build_grid_layout(model);
       ASSERT_NE(grid, nullptr);
-      // the points the passes compute, of 9 x 9 x 13: in layers of points 0-3 all 81 (the first
-      // node at row 0, x 0, the last at row 8, x 8), then 3 layers each from row i, x i to row
-      // 8 - i, x 8 - i, for insets i = 1, 2, 3: 9 (8 - 2i) + 8 - 2i + 1 points
+      ASSERT_EQ(grid_threads(*grid, 2), 2) << name;
+      // the points the passes compute, of 11 x 11 x 17: in layers of points 0-4 all 121 (the first
+      // node at row 0, x 0, the last at row 10, x 10), then 4 layers each from row i, x i to row
+      // 10 - i, x 10 - i, for insets i = 1, 2, 3: 12 (10 - 2i) + 1 points
       int spanned = 0;
       for (const PointSpan& span : grid->layer_spans) spanned += span.end - span.begin;
-      EXPECT_EQ(spanned, 4 * 81 + 3 * (61 + 41 + 21)) << name;
-      EXPECT_EQ(grid->layer_spans.back().begin, 3 * 9 + 3) << name;
+      EXPECT_EQ(spanned, 5 * 121 + 4 * (97 + 73 + 49)) << name;
+      EXPECT_EQ(grid->layer_spans.back().begin, 3 * 11 + 3) << name;
 
       Loads loads;
       loads.gravity = {0, 0, -9.81};
       ForceWorkspace grid_ws, lists_ws;
-      for (int call = 0; call < 4; ++call) {
-        State state = rest_state(model);  // a new state each call
+      for (int call = 0; call < 5; ++call) {  // 2 calls on one thread, then 3 on two (a new scratch)
+        State state = rest_state(model);      // a new state each call
         state.positions = test::perturbed(model, 1e-3, 11 + call);
         state.velocities = test::perturbed(model, 0.1, 21 + call) - model.rest_positions;
-        const int threads = 1 + call % 2;
+        const int threads = call < 2 ? 1 : 2;
         Eigen::Matrix3Xd by_grid, by_lists;
         compute_forces(model, state, loads, ForceOptions{true, threads}, grid_ws, by_grid);
         compute_forces(model, state, loads, on_spring_lists(ForceOptions{true, 1}), lists_ws, by_lists);

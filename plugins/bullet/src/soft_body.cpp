@@ -73,13 +73,16 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
     const bool scaled = !implicit && settings.max_added_mass > 0.0;
     // the scaling finds the stable step with its inertia (from the same assembly)
     if (scaled) body->mass_scaling_ = add_mass_for_time_step(body->model_, settings.max_added_mass);
-    body->sub_step_ = implicit ? settings.max_implicit_step
-                      : scaled ? settings.time_step_safety * body->mass_scaling_.time_step_after
-                               : settings.time_step_safety * max_stable_time_step(body->model_);
-    // thin cells shorten it (for the law whose thin cells stiffen), each from its own rest step
+    // thin cells shorten it (for the law whose thin cells stiffen), each from its own rest step;
+    // without added inertia the least of those is the body's (one assembly of the stiffness, not two)
     if (!implicit && body->model_.cell_law != CellLaw::kSprings) {
       body->cell_rest_steps_ = settings.time_step_safety * cell_stable_time_steps(body->model_);
     }
+    body->sub_step_ = implicit ? settings.max_implicit_step
+                      : scaled ? settings.time_step_safety * body->mass_scaling_.time_step_after
+                      : body->cell_rest_steps_.size() > 0
+                          ? body->cell_rest_steps_.minCoeff()
+                          : settings.time_step_safety * max_stable_time_step(body->model_);
   } catch (const std::length_error& too_large) {
     return Status::error(too_large.what());
   }

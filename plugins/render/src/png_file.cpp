@@ -34,7 +34,9 @@ Status write_png(const Image& image, const std::string& path) {
   // filters), more than drawing it (31 ms), and takes 7 ms, its file 290 kB instead of 175 kB.
   png_image png{};
   png.version = PNG_IMAGE_VERSION;
+#ifdef PNG_IMAGE_FLAG_FAST  // libpng 1.6.22 on (Debian 12 has 1.6.39); older ones write as before
   png.flags = PNG_IMAGE_FLAG_FAST;
+#endif
   png.width = static_cast<png_uint_32>(image.width);
   png.height = static_cast<png_uint_32>(image.height);
   png.format = PNG_FORMAT_RGB;

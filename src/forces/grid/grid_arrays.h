@@ -132,7 +132,7 @@ class GridScratch {
     const std::size_t layer = LayerArrays::layer_stride(grid) * kLayerSlots;
     const std::size_t rings_and_zeros = 1 + static_cast<std::size_t>(rings) * kRingPlaces;
     held_offset_ = LayerArrays::grid_stride(grid) * kGridSlots + layer * rings_and_zeros;
-    const std::size_t size = held_offset_ + static_cast<std::size_t>(rings) * kRingPlaces;
+    const std::size_t size = held_offset_ + static_cast<std::size_t>(rings) * kHeldStride;
     if (scratch.size() != size) {
       scratch.assign(size, 0.0);  // the paddings and the points outside the body stay as set here
       std::fill(scratch.begin() + static_cast<std::ptrdiff_t>(held_offset_), scratch.end(), -1.0);
@@ -150,13 +150,17 @@ class GridScratch {
     const std::size_t ring_size = LayerArrays::layer_stride(grid_) * kRingPlaces * kLayerSlots;
     double* first_ring = zeros + LayerArrays::layer_stride(grid_) * kLayerSlots;
     return LayerArrays(grid_, base_, zeros, first_ring + ring_size * static_cast<std::size_t>(ring),
-                       base_ + held_offset_ + static_cast<std::size_t>(ring) * kRingPlaces);
+                       base_ + held_offset_ + static_cast<std::size_t>(ring) * kHeldStride);
   }
 
  private:
   const GridLayout& grid_;
   double* base_ = nullptr;
   std::size_t held_offset_ = 0;  // where each ring's held layers are kept, after the rings
+  // 128 bytes apart, so that no two rings' share a cache line (unaligned as they are): every
+  // pass's out() reads its thread's, and no thread writes a line another reads
+  static constexpr std::size_t kHeldStride = 16;
+  static_assert(kHeldStride >= kRingPlaces);
 };
 
 }  // namespace cubespring

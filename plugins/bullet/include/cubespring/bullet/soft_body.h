@@ -138,8 +138,8 @@ class SoftBody {
   Status set_threads(int threads);
   int threads() const { return step_settings_.threads; }
   static constexpr int kMaxThreads = 256;
-  /// The sub-step without the added mass [s]: the step of the body at rest were no node given
-  /// inertia.
+  /// The sub-step without the added mass [s]: time_step_safety times the stable step of the body
+  /// at rest were no node given inertia.
   double unscaled_sub_step() const;
   /// The sub-step the world plans for the body's current state [s]: sub_step(), or shorter while
   /// some cell is squeezed thin, each thin cell allowing its thin-cell factor times its own rest
