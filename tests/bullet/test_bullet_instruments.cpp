@@ -124,6 +124,49 @@ INSTANTIATE_TEST_SUITE_P(HeavyInstruments, InstrumentOnTissue,
                                   (drop.param.step < 0.01 ? "1ms" : "60Hz");
                          });
 
+// A hand pressing the 100 g cube into the tissue: a force the user applies to a body between steps
+// (btRigidBody::applyCentralForce, as a haptic coupling does) acts in the sub-steps that move it
+// against the tissue, not only in Bullet's own step after them, where the tissue never felt it and
+// its velocity jumped by F T / m each step. At rest the tissue carries the weight and the push.
+class PressedInstrument : public ::testing::TestWithParam<double> {};
+
+TEST_P(PressedInstrument, TheTissueCarriesItsWeightAndThePush) {
+  test::BulletScene scene;
+  bullet::SoftBody* soft = add_tissue_block(scene);
+  ASSERT_NE(soft, nullptr);
+  const double mass = 0.1;
+  const double push = 0.5;  // [N] down
+  btRigidBody* box = drop_box(scene, mass);
+  const double step = GetParam();
+  btVector3 before(0, 0, 0);
+  double least_carried = 1e9;
+  double most_carried = 0.0;
+  const int steps = static_cast<int>(std::lround(3.0 / step));
+  for (int i = 0; i < steps; ++i) {
+    if (i == static_cast<int>(std::lround(2.5 / step))) before = box->getCenterOfMassPosition();
+    box->applyCentralForce(btVector3(0, 0, btScalar(-push)));
+    scene.world().stepSimulation(static_cast<btScalar>(step), 1, static_cast<btScalar>(step));
+    ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+    if (i >= static_cast<int>(std::lround(2.5 / step))) {
+      least_carried = std::min(least_carried, scene.world().getContactWrench(box).force.z());
+      most_carried = std::max(most_carried, scene.world().getContactWrench(box).force.z());
+    }
+  }
+  const double speed = (box->getCenterOfMassPosition() - before).length() / 0.5;
+  const double load = mass * 9.81 + push;
+  std::printf("pushed %.1f N at %.4f s steps: carried %.4f-%.4f N for %.4f N, speed %.2e m/s, Bullet reads %.2e\n",
+              push, step, least_carried, most_carried, load, speed, double(box->getLinearVelocity().length()));
+  EXPECT_NEAR(least_carried, load, 0.02 * load);
+  EXPECT_NEAR(most_carried, load, 0.02 * load);
+  EXPECT_LT(speed, 1e-3);
+  EXPECT_LT(box->getLinearVelocity().length(), 1e-3) << "Bullet reads the velocity it moved at";
+}
+
+INSTANTIATE_TEST_SUITE_P(HeavyInstruments, PressedInstrument, ::testing::Values(1.0 / 60, 1e-3),
+                         [](const ::testing::TestParamInfo<double>& step) {
+                           return step.param < 0.01 ? std::string("1ms") : std::string("60Hz");
+                         });
+
 // The 200 g cube on slippery tissue (wet tissue's friction is low): it rocked onto an edge, and
 // the edge, whose faces held the vertices on either side of it, cut between them through the 5 cm
 // of tissue to the ground and blew the tissue up (frictionless at t = 0.68 s, mu = 0.05 at 1.15 s)

@@ -54,9 +54,17 @@ RigidTrack start_track(const btCollisionObject* object, bool constrained) {
   track.dynamic = !object->isStaticOrKinematicObject() && track.body->getInvMass() > 0;
   if (track.dynamic) {
     track.free_flight = !constrained;
-    if (track.free_flight) track.gravity = bullet::to_eigen(track.body->getGravity());
     track.inverse_mass = static_cast<double>(track.body->getInvMass());
     track.inverse_inertia = to_eigen(track.body->getInvInertiaTensorWorld());
+    if (track.free_flight) {
+      track.gravity = bullet::to_eigen(track.body->getGravity());
+      // Bullet added the weight to the total force before its steps (an active body's), computed
+      // as its setGravity does, so the difference is exactly the user's force
+      btVector3 user_force = track.body->getTotalForce();
+      if (track.body->isActive()) user_force -= track.body->getGravity() * (btScalar(1.0) / track.body->getInvMass());
+      track.applied_acceleration = bullet::to_eigen(user_force) * track.inverse_mass;
+      track.applied_angular_acceleration = track.inverse_inertia * bullet::to_eigen(track.body->getTotalTorque());
+    }
   }
   return track;
 }
@@ -72,7 +80,8 @@ void advance_track(RigidTrack& track, double t, double dt, double kinematic_pose
     return;
   }
   if (!track.dynamic) return;
-  track.linear_velocity += track.gravity * dt;
+  track.linear_velocity += (track.gravity + track.applied_acceleration) * dt;
+  track.angular_velocity += track.applied_angular_acceleration * dt;
   btTransform next;
   btTransformUtil::integrateTransform(track.transform, to_bt(track.linear_velocity), to_bt(track.angular_velocity),
                                       static_cast<btScalar>(dt), next);
@@ -99,8 +108,10 @@ PendingVelocity hand_over(RigidTrack& track, double step_length) {
   btTransform start;
   btTransformUtil::integrateTransform(track.transform, -linear, -angular, static_cast<btScalar>(step_length), start);
   track.body->setCenterOfMassTransform(start);
-  track.body->setLinearVelocity(linear - track.body->getGravity() * static_cast<btScalar>(step_length));
-  track.body->setAngularVelocity(angular);
+  // Bullet's step adds what gravity and the user's forces do over its length
+  track.body->setLinearVelocity(linear - track.body->getGravity() * static_cast<btScalar>(step_length) -
+                                to_bt(track.applied_acceleration * step_length));
+  track.body->setAngularVelocity(angular - to_bt(track.applied_angular_acceleration * step_length));
   return {track.linear_velocity - track.moved_linear_velocity, track.angular_velocity - track.moved_angular_velocity};
 }
 

@@ -23,6 +23,11 @@ struct RigidTrack {
   Eigen::Vector3d linear_velocity{0, 0, 0};   ///< [m/s]
   Eigen::Vector3d angular_velocity{0, 0, 0};  ///< [rad/s]
   Eigen::Vector3d gravity{0, 0, 0};           ///< [m/s^2], dynamic bodies
+  /// What the forces and torques the user applied before the step (applyCentralForce, applyTorque:
+  /// a haptic coupling, a hand) do to a free body [m/s^2, rad/s^2]: Bullet's step applies them
+  /// too, so the sub-steps must, or the tissue never feels them.
+  Eigen::Vector3d applied_acceleration{0, 0, 0};
+  Eigen::Vector3d applied_angular_acceleration{0, 0, 0};
   double inverse_mass = 0.0;
   Eigen::Matrix3d inverse_inertia = Eigen::Matrix3d::Zero();  ///< world frame, at the step's start
 
