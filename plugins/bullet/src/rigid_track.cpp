@@ -58,10 +58,15 @@ RigidTrack start_track(const btCollisionObject* object, bool constrained) {
     track.inverse_inertia = to_eigen(track.body->getInvInertiaTensorWorld());
     if (track.free_flight) {
       track.gravity = bullet::to_eigen(track.body->getGravity());
-      // Bullet added the weight to the total force before its steps (an active body's), computed
-      // as its setGravity does, so the difference is exactly the user's force
+      // Bullet added the weight to the total force before its steps (an active body's); what is
+      // left is the user's, and a last bit's difference (setMassProps and setGravity compute the
+      // weight differently) is none, so bodies nobody pushes step as they did before
       btVector3 user_force = track.body->getTotalForce();
-      if (track.body->isActive()) user_force -= track.body->getGravity() * (btScalar(1.0) / track.body->getInvMass());
+      if (track.body->isActive()) {
+        const btVector3 weight = track.body->getGravity() * (btScalar(1.0) / track.body->getInvMass());
+        user_force -= weight;
+        if (user_force.length() <= btScalar(1e-5) * weight.length()) user_force.setZero();
+      }
       track.applied_acceleration = bullet::to_eigen(user_force) * track.inverse_mass;
       track.applied_angular_acceleration = track.inverse_inertia * bullet::to_eigen(track.body->getTotalTorque());
     }
