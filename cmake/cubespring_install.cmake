@@ -22,6 +22,7 @@ cubespring_install_part(cubespring_mesh plugins/mesh/include)
 cubespring_install_part(cubespring_view plugins/render/include)
 cubespring_install_part(cubespring_render "")  # its headers are view's folder
 cubespring_install_part(cubespring_bullet plugins/bullet/include)
+cubespring_install_part(cubespring_haptics plugins/haptics/include)
 cubespring_install_part(cubespring_scene_world scenes/include)
 cubespring_install_part(cubespring_scene "")  # its headers are scene_world's folder
 install(EXPORT cubespringTargets NAMESPACE cubespring::

@@ -4,8 +4,9 @@
 # Fuzzes with libFuzzer (clang and Debian's libclang-rt-dev): load_mesh for each mesh format that
 # load_mesh checks before assimp reads it, or reads in a bounded process of its own, and
 # parse_scene (tests/fuzz/fuzz_scene.cpp, which also checks the message rules), and the command
-# line of measure and voxelize (tests/fuzz/fuzz_cli.cpp, the same rules):
-#   scripts/fuzz.sh [SECONDS per target, default 240] [TARGET ...] (ply off dae gltf scene cli)
+# line of measure and voxelize (tests/fuzz/fuzz_cli.cpp, the same rules), and the haptic device
+# path's reader (tests/fuzz/fuzz_trajectory.cpp):
+#   scripts/fuzz.sh [SECONDS per target, default 240] [TARGET ...] (ply off dae gltf scene cli trajectory)
 #   scripts/fuzz.sh --ci   (CI's short run: a fixed number of inputs per target from a fixed seed,
 #                           so that it finds the same on every run of the same code)
 # The parts not fuzzed come from a build folder, FUZZ_BUILD (default build/release: run
@@ -14,7 +15,7 @@
 # (tests/mesh/test_load_mesh.cpp, tests/cli/test_demo.cpp).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-declare -A ci_runs=([scene]=200000 [ply]=20000 [off]=20000 [gltf]=400 [dae]=400 [cli]=100000)
+declare -A ci_runs=([scene]=200000 [ply]=20000 [off]=20000 [gltf]=400 [dae]=400 [cli]=100000 [trajectory]=100000)
 ci=false
 if [ "${1:-}" = --ci ]; then
   ci=true
@@ -23,7 +24,7 @@ if [ "${1:-}" = --ci ]; then
 fi
 seconds=${1:-240}
 shift || true
-targets=("${@:-ply off dae gltf scene cli}")
+targets=("${@:-ply off dae gltf scene cli trajectory}")
 compiler=$(command -v clang++-16 || command -v clang++-14 || command -v clang++)
 mkdir -p build/fuzz
 release=${FUZZ_BUILD:-build/release}
@@ -47,6 +48,9 @@ mesh_build=$!
   "$release"/validation/libcubespring_validation.a "$release"/plugins/mesh/libcubespring_mesh.a \
   "$release"/src/libcubespring.a -lassimp -fopenmp -o build/fuzz/fuzz_cli &
 cli_build=$!
+# the device path's reader, instrumented; the core from the build folder
+"$compiler" "${flags[@]}" -Iplugins/haptics/include tests/fuzz/fuzz_trajectory.cpp \
+  plugins/haptics/src/device_trajectory.cpp "$release"/src/libcubespring.a -fopenmp -o build/fuzz/fuzz_trajectory
 wait "$mesh_build"
 wait "$cli_build"
 for target in ${targets[@]}; do
@@ -65,6 +69,11 @@ for target in ${targets[@]}; do
     # arguments ended by NUL bytes: a command line is short
     (cd build/fuzz && ./fuzz_cli "corpus_$target" "${length[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=1024 \
       -dict=../../tests/fuzz/cli.dict)
+    continue
+  fi
+  if [ "$target" = trajectory ]; then
+    # a device path's CSV: its work is per line
+    (cd build/fuzz && ./fuzz_trajectory "corpus_$target" "${length[@]}" -timeout=10 -rss_limit_mb=2048 -max_len=4096)
     continue
   fi
   if [ "$target" = scene ]; then

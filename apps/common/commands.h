@@ -36,6 +36,9 @@ Command add_bench_bullet_command(CLI::App& app);
 Command add_bench_contact_command(CLI::App& app);
 /// Only with Bullet and the renderer (CUBESPRING_HAS_DEMO); with no subcommand, main runs it.
 Command add_run_command(CLI::App& app);
+/// Only with the demo (CUBESPRING_HAS_DEMO) and the haptics part: a recorded device path
+/// played against a scene through a virtual coupling.
+Command add_haptic_replay_command(CLI::App& app);
 /// Only with the demo (CUBESPRING_HAS_DEMO): the demo's physics and rendering costs.
 Command add_bench_render_command(CLI::App& app);
 

@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   commands["voxelize"] = cubespring::app::add_voxelize_command(app);
 #ifdef CUBESPRING_HAS_DEMO
   commands["run"] = cubespring::app::add_run_command(app);
+  commands["haptic-replay"] = cubespring::app::add_haptic_replay_command(app);
   return cubespring::app::parse_and_run(app, argc, argv, commands, commands["run"]);  // alone: the demo
 #else
   return cubespring::app::parse_and_run(app, argc, argv, commands);

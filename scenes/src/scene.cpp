@@ -164,7 +164,7 @@ Status read_keyframe(const JsonFields& fields, Keyframe& keyframe) {
 }
 
 Status read_tool(const JsonFields& fields, const SceneContext& context, int index, ToolSpec& tool) {
-  if (Status s = fields.check_keys({"name", "mesh", "scale", "capsule", "keyframes"}); !s) return s;
+  if (Status s = fields.check_keys({"name", "mesh", "scale", "capsule", "mass", "keyframes"}); !s) return s;
   tool.name = "tool" + std::to_string(index);
   if (Status s = fields.string("name", tool.name); !s) return s;
   if (tool.name.empty() || tool.name.find_first_of(",\"\n") != std::string::npos) {
@@ -187,6 +187,9 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
     tool.capsule = spec;
   }
   if (Status s = fields.positive("scale", tool.scale); !s) return s;
+  if (Status s = fields.positive("mass", tool.mass); !s) return s;
+  constexpr double kMaxToolMass = 100.0;  // [kg]
+  if (!(tool.mass <= kMaxToolMass)) return fields.error("mass", "must be at most " + text(kMaxToolMass) + " kg");
   // a capsule of 1e308 m read fine and gave every torque as NaN
   constexpr double kMaxToolSize = 100.0;  // [m]
   if (tool.capsule && !(tool.scale * tool.capsule->length <= kMaxToolSize)) {

@@ -198,7 +198,18 @@ Status SceneWorld::build_tools(const Scene& scene) {
 }
 
 void SceneWorld::place_tools(double t) {
-  for (SceneTool& tool : tools_) tool.body->setWorldTransform(to_bt(pose_at(tool.keyframes, t) * tool.shape_offset));
+  for (SceneTool& tool : tools_) {
+    if (tool.scripted) tool.body->setWorldTransform(to_bt(pose_at(tool.keyframes, t) * tool.shape_offset));
+  }
+}
+
+SceneTool* SceneWorld::take_tool(const std::string& name) {
+  for (SceneTool& tool : tools_) {
+    if (tool.name != name) continue;
+    tool.scripted = false;
+    return &tool;
+  }
+  return nullptr;
 }
 
 Status SceneWorld::step(double dt) {

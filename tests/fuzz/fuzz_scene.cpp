@@ -58,6 +58,7 @@ void check_scene(const cubespring::scene::Scene& scene) {
   check_finite("table.half_size", scene.table.half_size);
   for (const cubespring::scene::ToolSpec& tool : scene.tools) {
     check_finite("tools.scale", tool.scale);
+    check_finite("tools.mass", tool.mass);
     if (tool.capsule) check_finite("tools.capsule", tool.capsule->radius + tool.capsule->length);
     for (const cubespring::scene::Keyframe& key : tool.keyframes) {
       check_finite("tools.keyframes", key.time + key.position.sum() + key.orientation.coeffs().sum());

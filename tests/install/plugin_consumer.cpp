@@ -1,12 +1,13 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
 // The optional parts from an installed tree: a soft block settles on a Bullet floor and carries
-// its weight there; a mesh written here is loaded and voxelized.
+// its weight there; a device's coupling pulls a tool; a mesh written here is loaded and voxelized.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 
 #include <cubespring/bullet/world.h>
+#include <cubespring/haptics/virtual_coupling.h>
 #include <cubespring/mesh/load_mesh.h>
 #include <cubespring/voxelize.h>
 
@@ -38,6 +39,14 @@ int main() {
   world.removeRigidBody(&floor);
   if (std::abs(carried - weight) > 0.01 * weight) {
     std::printf("floor carries %g N of a %g N block\n", carried, weight);
+    return 1;
+  }
+
+  auto coupling = cubespring::haptics::VirtualCoupling::create({}, {0.02, {1e-5, 1e-5, 1e-6}, {}});
+  cubespring::haptics::DeviceState device;
+  device.pose.translation() = Eigen::Vector3d(0, 0, 0.001);
+  if (!coupling || std::abs(coupling->on_tool(device, {}).force.z() - 1.0) > 1e-9) {
+    std::puts("a 1000 N/m coupling stretched 1 mm does not pull the tool with 1 N");
     return 1;
   }
 

@@ -84,6 +84,9 @@ struct ToolSpec {
   std::string mesh;    ///< surface mesh (resolved path), or empty
   double scale = 1.0;  ///< multiplies the mesh's and the capsule's sizes
   std::optional<CapsuleSpec> capsule;
+  /// [kg]: a tool the user drives through a haptic coupling (`cubespring haptic-replay`) moves as a
+  /// body of this mass, its inertia that of its contact shape; a scripted tool ignores it.
+  double mass = 0.02;
   std::vector<Keyframe> keyframes;  ///< sorted by time
 };
 

@@ -24,7 +24,8 @@ struct SceneTool {
   TriangleMesh mesh;  ///< in the tool's frame (tip at the origin), for drawing
   Eigen::Isometry3d shape_offset = Eigen::Isometry3d::Identity();  ///< collision body in the tool's frame
   std::unique_ptr<btCollisionShape> shape;
-  std::unique_ptr<btRigidBody> body;  ///< kinematic
+  std::unique_ptr<btRigidBody> body;  ///< kinematic, unless the caller took the tool
+  bool scripted = true;               ///< place_tools() moves it (false once taken: take_tool())
 };
 
 /// What the organ became, for the log.
@@ -46,8 +47,11 @@ class SceneWorld {
   SceneWorld(const SceneWorld&) = delete;
   SceneWorld& operator=(const SceneWorld&) = delete;
 
-  /// Moves every tool to its pose at time t [s] (kinematic: Bullet derives its velocity).
+  /// Moves every scripted tool to its pose at time t [s] (kinematic: Bullet derives its velocity).
   void place_tools(double t);
+  /// Hands the tool of that name over to the caller (a haptic device drives it): place_tools()
+  /// leaves it where the caller puts it from then on. Null when there is no such tool.
+  SceneTool* take_tool(const std::string& name);
   /// One Bullet step of dt [s] with the tools already placed at the step's end; an error when the
   /// organ went unstable.
   Status step(double dt);
