@@ -57,14 +57,16 @@ void run_device_loop(const haptics::DeviceTrajectory& path, haptics::DeviceLink&
     std::this_thread::sleep_until(after(start, static_cast<double>(k) * period));
     const double t = seconds_since(start);
     if (t > duration || rows.size() == rows.capacity()) return;
+    // after a stall, the next wake-up is the next period's, not a burst of the missed ones
+    k = std::max(k, static_cast<long>(t / period));
     haptics::DeviceState device = path.at(path.start_time() + t);
     device.time = t;
     DeviceRow row;
     row.time = t;
     row.felt = link.exchange(device);
     row.device = device.pose.translation();
-    if (const std::optional<haptics::BodyState> tool = link.tool())
-      row.tool = (tool->pose * coupling.tool().tip).translation();
+    if (const std::optional<haptics::PublishedTool> tool = link.tool())
+      row.tool = (tool->body.pose * coupling.tool().tip).translation();
     rows.push_back(row);
   }
 }
@@ -78,8 +80,8 @@ LoopTiming timing_of(const std::vector<DeviceRow>& rows, double rate) {
   if (periods.empty()) return timing;
   for (const double p : periods) {
     timing.mean += p / static_cast<double>(periods.size());
-    timing.later_than_1_5_ms += p > 0.0015;
-    timing.later_than_5_ms += p > 0.005;
+    timing.later_than_1_5_periods += p > 1.5 * timing.nominal;
+    timing.later_than_5_periods += p > 5.0 * timing.nominal;
   }
   std::sort(periods.begin(), periods.end());
   timing.longest = periods.back();
@@ -134,26 +136,45 @@ Result<ReplayResult> replay_device_path(const scene::Scene& scene, const haptics
   if (Status s = settle(world, scene); !s) return s;
 
   scene::SceneTool* taken = world.take_tool(chosen->name);
+  if (taken == nullptr) return Status::error("tool \"" + chosen->name + "\": not in the scene's world");
   Result<haptics::CoupledTool> coupled = haptics::CoupledTool::create(world.world(), *taken->body, chosen->mass,
                                                                       taken->shape_offset.inverse(), options.coupling);
   if (!coupled) return Status::error("tool \"" + chosen->name + "\": " + coupled.message());
   haptics::CoupledTool& tool = *coupled;
   // the world's step: the scene's, split until the coupling is stable at it
   ReplayResult result;
-  const int splits = static_cast<int>(std::ceil(scene.time_step / tool.coupling().longest_stable_step() - 1e-9));
-  result.world_step = scene.time_step / std::max(1, splits);
+  constexpr double kMostSplits = 1000;  // a step of a microsecond for the demo's 4 ms: a coupling far too stiff
+  const double splits = std::ceil(scene.time_step / tool.coupling().longest_stable_step());
+  result.world_step = scene.time_step / std::clamp(splits, 1.0, kMostSplits);
   if (Status s = tool.coupling().check_step(result.world_step); !s) return s;
 
   haptics::DeviceLink link(tool.coupling());
   tool.place_at(path.at(path.start_time()));
   link.publish_tool(tool.state(), 0.0);
   const double duration = options.duration > 0 ? options.duration : path.end_time() - path.start_time();
+  // the rows are kept in memory (about 100 bytes a period) so that the loop never allocates
+  constexpr double kMostPeriods = 1e7;
+  if (!(duration * options.rate <= kMostPeriods)) {
+    char what[160];
+    std::snprintf(what, sizeof what, "%.4g s at %.4g Hz (--duration, --rate) are %.4g device periods, more than %.0e",
+                  duration, options.rate, duration * options.rate, kMostPeriods);
+    return Status::error(std::string(what) + ": play a shorter stretch of the path");
+  }
   std::vector<DeviceRow> rows;
   rows.reserve(static_cast<size_t>(duration * options.rate) + 16);
   std::atomic<bool> stop{false};
   const Clock::time_point start = after(Clock::now(), 0.01);
   std::thread device_thread(run_device_loop, std::cref(path), std::ref(link), std::cref(tool.coupling()), options.rate,
                             duration, start, std::cref(stop), std::ref(rows));
+  // whatever ends the simulation's loop (an exception too) stops the device's first
+  struct Joined {
+    std::atomic<bool>& stop;
+    std::thread& thread;
+    ~Joined() {
+      stop = true;
+      if (thread.joinable()) thread.join();
+    }
+  } joined{stop, device_thread};
   // a device's servo loop runs at real-time priority where the system allows it (root, or
   // CAP_SYS_NICE): the simulation's thread then cannot delay its wake-ups; else it runs as is
   sched_param priority{};
@@ -178,7 +199,7 @@ Result<ReplayResult> replay_device_path(const scene::Scene& scene, const haptics
     result.most_behind = std::max(result.most_behind, seconds_since(start) - t);
   }
   stop = true;
-  device_thread.join();
+  device_thread.join();  // the rows are the device thread's until it has ended
   result.simulated = t;
   const bool real_time = result.device.real_time_priority;
   result.device = timing_of(rows, options.rate);

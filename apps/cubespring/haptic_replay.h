@@ -25,12 +25,12 @@ struct ReplayOptions {
 /// How the device loop kept its rate: each period is the time between two of its wake-ups.
 struct LoopTiming {
   int periods = 0;
-  double nominal = 0.0;       ///< [s]
-  double mean = 0.0;          ///< [s]
-  double percentile99 = 0.0;  ///< [s]
-  double longest = 0.0;       ///< [s]
-  int later_than_1_5_ms = 0;
-  int later_than_5_ms = 0;
+  double nominal = 0.0;            ///< [s]
+  double mean = 0.0;               ///< [s]
+  double percentile99 = 0.0;       ///< [s]
+  double longest = 0.0;            ///< [s]
+  int later_than_1_5_periods = 0;  ///< at 1 kHz: later than 1.5 ms
+  int later_than_5_periods = 0;
   bool real_time_priority = false;  ///< the loop's thread ran under SCHED_FIFO (allowed to root)
 };
 

@@ -29,8 +29,9 @@ void print_table(const ReplayResult& r, double rate) {
   const LoopTiming& d = r.device;
   std::printf("device loop at %.0f Hz: %d periods, mean %.3f ms, 99th percentile %.3f ms, longest %.3f ms\n", rate,
               d.periods, 1e3 * d.mean, 1e3 * d.percentile99, 1e3 * d.longest);
-  std::printf("  later than 1.5 ms: %d (%.2f%%), later than 5 ms: %d; thread priority %s\n", d.later_than_1_5_ms,
-              d.periods > 0 ? 100.0 * d.later_than_1_5_ms / d.periods : 0.0, d.later_than_5_ms,
+  std::printf("  later than 1.5 periods: %d (%.2f%%), later than 5 periods: %d; thread priority %s\n",
+              d.later_than_1_5_periods, d.periods > 0 ? 100.0 * d.later_than_1_5_periods / d.periods : 0.0,
+              d.later_than_5_periods,
               d.real_time_priority ? "real-time (SCHED_FIFO)" : "normal (real-time not allowed)");
   std::printf(
       "simulation: %d world steps of %.3f ms over %.3f s, physics %.3f s (%.2fx real time), at most %.1f ms "
@@ -48,8 +49,8 @@ nlohmann::json json_of(const ReplayResult& r, double rate) {
             {"mean_period_s", d.mean},
             {"percentile99_period_s", d.percentile99},
             {"longest_period_s", d.longest},
-            {"later_than_1_5_ms", d.later_than_1_5_ms},
-            {"later_than_5_ms", d.later_than_5_ms},
+            {"later_than_1_5_periods", d.later_than_1_5_periods},
+            {"later_than_5_periods", d.later_than_5_periods},
             {"real_time_priority", d.real_time_priority}}},
           {"simulation",
            {{"world_steps", r.world_steps},

@@ -189,7 +189,10 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
   if (Status s = fields.positive("scale", tool.scale); !s) return s;
   if (Status s = fields.positive("mass", tool.mass); !s) return s;
   constexpr double kMaxToolMass = 100.0;  // [kg]
-  if (!(tool.mass <= kMaxToolMass)) return fields.error("mass", "must be at most " + text(kMaxToolMass) + " kg");
+  constexpr double kMinToolMass = 1e-6;   // [kg]: lighter, a coupling's step would be microseconds
+  if (!(tool.mass >= kMinToolMass && tool.mass <= kMaxToolMass))
+    return fields.error(
+        "mass", "must be from " + text(kMinToolMass) + " to " + text(kMaxToolMass) + " kg, got " + text(tool.mass));
   // a capsule of 1e308 m read fine and gave every torque as NaN
   constexpr double kMaxToolSize = 100.0;  // [m]
   if (tool.capsule && !(tool.scale * tool.capsule->length <= kMaxToolSize)) {

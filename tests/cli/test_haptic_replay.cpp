@@ -75,7 +75,9 @@ TEST_F(HapticReplay, TheDeviceFeelsTheLiverPushBackAtItsRate) {
   // 1.5 s at 1 kHz; a period the machine lost still counts once
   EXPECT_GT(report["device"]["periods"].get<int>(), 1200);
   EXPECT_LE(report["device"]["periods"].get<int>(), 1500);
-  EXPECT_NEAR(report["device"]["mean_period_s"].get<double>(), 0.001, 2e-4);
+  for (const char* key : {"percentile99_period_s", "longest_period_s", "later_than_1_5_periods", "later_than_5_periods",
+                          "real_time_priority"})
+    EXPECT_TRUE(report["device"].contains(key)) << key;
   EXPECT_GE(report["simulation"]["simulated_s"].get<double>(), 1.5 - 1e-9);
   // the scene's 4 ms steps split for a 1000 N/m coupling on a 20 g probe
   EXPECT_LE(report["simulation"]["world_step_s"].get<double>(), 0.0019);

@@ -51,17 +51,20 @@ TEST_P(DeviceTrajectoryErrors, NameTheLineTheColumnAndTheValue) {
 
 INSTANTIATE_TEST_SUITE_P(
     Bad, DeviceTrajectoryErrors,
-    ::testing::Values(BadTrajectory{"", "path.csv: empty"},
-                      BadTrajectory{"time,x,y,z\n0,0,0,0\n", "path.csv:1: the first line must be the header"},
-                      BadTrajectory{kHeader, "no samples"},
-                      BadTrajectory{kHeader + "0,0,0,0,1,0,0\n", "path.csv:2: 7 values, expected 8"},
-                      BadTrajectory{kHeader + "0,0,0,0,1,0,0,0\n0.1,0,y,0,1,0,0,0\n", "path.csv:3: y_m \"y\" is not"},
-                      BadTrajectory{kHeader + "0,1e999,0,0,1,0,0,0\n", "x_m \"1e999\" is not a finite number"},
-                      BadTrajectory{kHeader + "0,0,0,0,1,0,0,0\n0,0,0,0,1,0,0,0\n",
-                                    "path.csv:3: time_s 0 must be later"},
-                      BadTrajectory{kHeader + "0,0,0,0,0,0,0,0\n", "orientation qw, qx, qy, qz must not be zero"},
-                      BadTrajectory{kHeader + "0,0,0,5000,1,0,0,0\n", "more than 1 km"},
-                      BadTrajectory{kHeader + "0," + std::string(5000, '7') + "x,0,0,1,0,0,0\n", "x_m \"777"}));
+    ::testing::Values(
+        BadTrajectory{"", "path.csv: empty"},
+        BadTrajectory{
+            "time,x,y,z\n0,0,0,0\n",
+            "path.csv:1: the first line must be the header time_s,x_m,y_m,z_m,qw,qx,qy,qz, not \"time,x,y,z\""},
+        BadTrajectory{kHeader, "no samples"},
+        BadTrajectory{kHeader + "0,0,0,0,1,0,0\n", "path.csv:2: 7 values, expected 8"},
+        BadTrajectory{kHeader + "0,0,0,0,1,0,0,0\n0.1,0,y,0,1,0,0,0\n", "path.csv:3: y_m \"y\" is not"},
+        BadTrajectory{kHeader + "0,1e999,0,0,1,0,0,0\n", "x_m \"1e999\" is not a finite number"},
+        BadTrajectory{kHeader + "0,0,0,0,1,0,0,0\n0,0,0,0,1,0,0,0\n", "path.csv:3: time_s 0 must be later"},
+        BadTrajectory{kHeader + "0,0,0,0,0,0,0,0\n", "orientation qw, qx, qy, qz must be neither zero"},
+        BadTrajectory{kHeader + "0,0,0,0,1e200,0,0,0\n", "nor larger than 1e150"},
+        BadTrajectory{kHeader + "0,0,0,5000,1,0,0,0\n", "the position (0, 0, 5000) is more than 1 km"},
+        BadTrajectory{kHeader + "0," + std::string(5000, '7') + "x,0,0,1,0,0,0\n", "x_m \"777"}));
 
 TEST(DeviceTrajectory, ShipsAPressADragAndARelease) {
   Result<DeviceTrajectory> path = DeviceTrajectory::load(CUBESPRING_DATA_DIR "/haptics/press_drag_release.csv");

@@ -143,6 +143,7 @@ TEST_P(HapticPress, NeitherOscillatesNorTunnelsAndDragsSmoothly) {
       "k = %.0f N/m: deepest %.3f mm, least upward force while under the surface %.4f N, drag %.4f N, "
       "rough %.2f%%\n",
       GetParam(), 1e3 * deepest, least_felt_inside, mean, 100 * rough);
+  EXPECT_TRUE(pressing) << "the tissue pushed back";
   EXPECT_LT(deepest, 0.0005);
   EXPECT_GE(least_felt_inside, 0.0) << "the device is never pulled into the tissue";
   EXPECT_LT(rough, 0.03);

@@ -3,7 +3,8 @@
 // The virtual coupling against its closed form: a free tool pulled towards a device that stands
 // still follows the critically damped spring x(t) = d (1 - (1 + w t) e^(-w t)), w = sqrt(k / m),
 // in position and in angle; what the device feels is the reaction; the world step it allows; and
-// the device link never hands a thread half of another's write.
+// the device link never hands a thread half of another's write, and refuses a state that is not
+// a number.
 #include <atomic>
 #include <cmath>
 #include <thread>
@@ -95,21 +96,33 @@ TEST(VirtualCoupling, TheDeviceFeelsTheReactionAboutItsPoint) {
   tool.tip.translation() = Eigen::Vector3d(0, 0, -0.05);
   Result<VirtualCoupling> coupling = VirtualCoupling::create(CouplingSettings{}, tool);
   ASSERT_TRUE(coupling.ok()) << coupling.message();
+  // the device away from the origin, tilted 0.3 rad about y
   DeviceState device;
+  device.pose.translation() = Eigen::Vector3d(0.02, -0.01, 0.07);
+  device.pose.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY()).toRotationMatrix();
   BodyState body;
   body.pose = coupling->body_pose_for(device.pose);
+  EXPECT_TRUE(body.pose.translation().isApprox(device.pose * Eigen::Vector3d(0, 0, 0.05)))
+      << "the centre of mass 5 cm up the tool's own axis";
   EXPECT_LT(coupling->on_tool(device, body).force.norm(), 1e-12) << "no pull where the device is";
   EXPECT_LT(coupling->on_tool(device, body).torque.norm(), 1e-12);
-  // the tool held 2 mm short of the device and turned 0.05 rad about x
+  // the tool held 2 mm off the device and turned 0.05 rad further about x
   body.pose.translation() += Eigen::Vector3d(0, 0.002, -0.001);
-  body.pose.linear() = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  body.pose.linear() = Eigen::AngleAxisd(0.05, Eigen::Vector3d::UnitX()).toRotationMatrix() * body.pose.linear();
   const Wrench on_tool = coupling->on_tool(device, body);
   const Wrench felt = coupling->on_device(device, body);
+  EXPECT_TRUE(on_tool.force.isApprox(1000 * Eigen::Vector3d(0, -0.002, 0.001), 1e-9)) << on_tool.force.transpose();
+  // the angular spring turns it back about -x: I w^2 angle with the tool's inertia about that axis
+  const Eigen::Matrix3d axes = body.pose.linear();
+  const Eigen::Matrix3d inertia = axes * tool.principal_inertia.asDiagonal() * axes.transpose();
+  EXPECT_TRUE(on_tool.torque.isApprox(inertia * (1000 / 0.02) * Eigen::Vector3d(-0.05, 0, 0), 1e-6))
+      << on_tool.torque.transpose();
+  // the device: the opposite force, held at the tool's target centre, and the opposite torque,
+  // both taken about the device's point
+  const Eigen::Vector3d held_at = device.pose * Eigen::Vector3d(0, 0, 0.05);
   EXPECT_TRUE((felt.force + on_tool.force).isZero(1e-12));
-  const Eigen::Vector3d target_centre = coupling->body_pose_for(device.pose).translation();
-  // about the device's point the two torques and the force's moment balance
-  EXPECT_TRUE((felt.torque + on_tool.torque + target_centre.cross(on_tool.force)).isZero(1e-12));
-  EXPECT_NEAR(on_tool.force.y(), -1000 * 0.002, 1e-9);
+  EXPECT_TRUE(
+      felt.torque.isApprox(-on_tool.torque + (held_at - device.pose.translation()).cross(-on_tool.force), 1e-9));
   // past the limits the force and torque keep their direction at the limit's length
   body.pose.translation() += Eigen::Vector3d(0, 1.0, 0);
   EXPECT_NEAR(coupling->on_tool(device, body).force.norm(), CouplingSettings{}.force_limit, 1e-9);
@@ -135,6 +148,12 @@ TEST(VirtualCoupling, NamesTheStepItNeedsAndBadSettings) {
   bad = CouplingSettings{};
   bad.damping_ratio = std::nan("");
   EXPECT_NE(VirtualCoupling::create(bad, tool).message().find("damping ratio nan"), std::string::npos);
+  bad.damping_ratio = 0;  // against tissue an undamped coupling has no stable step
+  EXPECT_NE(VirtualCoupling::create(bad, tool).message().find("damping ratio 0: must be a number > 0"),
+            std::string::npos);
+  // lightly damped, the tissue's sub-steps need w dt < 4 z: the bound falls with the damping
+  bad.damping_ratio = 0.1;
+  EXPECT_NEAR(VirtualCoupling::create(bad, tool)->longest_stable_step(), 0.5 * 0.4 / std::sqrt(1000 / 0.02), 1e-12);
   tool.mass = 0;
   EXPECT_NE(VirtualCoupling::create(CouplingSettings{}, tool).message().find("tool mass 0 kg"), std::string::npos);
 }
@@ -145,6 +164,11 @@ TEST(DeviceLink, NoThreadReadsHalfOfAnothersWrite) {
   DeviceLink link(*VirtualCoupling::create(CouplingSettings{}, tool));
   EXPECT_FALSE(link.device());
   EXPECT_TRUE(link.exchange(DeviceState{}).force.isZero()) << "nothing felt before the tool is published";
+  DeviceState broken;
+  broken.pose.translation().x() = std::nan("");
+  link.publish_tool(BodyState{}, 0.0);
+  EXPECT_TRUE(link.exchange(broken).force.isZero()) << "a state that is not a number is not felt";
+  EXPECT_TRUE(link.device()->pose.translation().allFinite()) << "nor kept";
   std::atomic<bool> done{false};
   std::atomic<int> torn{0};
   // each write puts one number in every field; a torn read mixes two
@@ -154,8 +178,10 @@ TEST(DeviceLink, NoThreadReadsHalfOfAnothersWrite) {
       state.pose.translation() = Eigen::Vector3d::Constant(i);
       state.linear_velocity = Eigen::Vector3d::Constant(i);
       state.time = i;
-      const std::optional<BodyState> seen = link.tool();
-      if (seen && (seen->pose.translation().array() != seen->linear_velocity.x()).any()) ++torn;
+      const std::optional<PublishedTool> seen = link.tool();
+      if (seen &&
+          ((seen->body.pose.translation().array() != seen->time).any() || seen->body.linear_velocity.x() != seen->time))
+        ++torn;
       link.exchange(state);
     }
     done = true;

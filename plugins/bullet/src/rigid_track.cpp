@@ -63,7 +63,8 @@ RigidTrack start_track(const btCollisionObject* object, bool constrained) {
       // weight differently) is none, so bodies nobody pushes step as they did before
       btVector3 user_force = track.body->getTotalForce();
       if (track.body->isActive()) {
-        const btVector3 weight = track.body->getGravity() * (btScalar(1.0) / track.body->getInvMass());
+        const btVector3 weight =
+            track.body->getGravity() * (btScalar(1.0) / track.body->getInvMass()) * track.body->getLinearFactor();
         user_force -= weight;
         if (user_force.length() <= btScalar(1e-5) * weight.length()) user_force.setZero();
       }

@@ -2,6 +2,8 @@
 // SPDX-License-Identifier: MIT
 #include "cubespring/haptics/coupled_tool.h"
 
+#include <cstdio>
+
 #include "cubespring/bullet/conversions.h"
 
 namespace cubespring::haptics {
@@ -12,7 +14,11 @@ using bullet::to_eigen;
 Result<CoupledTool> CoupledTool::create(btDiscreteDynamicsWorld& world, btRigidBody& body, double mass,
                                         const Eigen::Isometry3d& tip, const CouplingSettings& settings) {
   if (body.getCollisionShape() == nullptr) return Status::error("the tool's body has no collision shape");
-  if (!(mass > 0 && mass < 1e6)) return Status::error("tool mass: must be a number > 0 kg");
+  if (!(mass >= 1e-6 && mass <= 1e6)) {
+    char text[96];
+    std::snprintf(text, sizeof text, "tool mass %.4g kg: must be a number from 1e-06 to 1e+06 kg", mass);
+    return Status::error(text);
+  }
   btVector3 inertia(0, 0, 0);
   body.getCollisionShape()->calculateLocalInertia(static_cast<btScalar>(mass), inertia);
   ToolInertia tool;
@@ -22,18 +28,22 @@ Result<CoupledTool> CoupledTool::create(btDiscreteDynamicsWorld& world, btRigidB
   Result<VirtualCoupling> coupling = VirtualCoupling::create(settings, tool);
   if (!coupling) return coupling.status();
 
-  // Bullet sorts bodies into static, kinematic and dynamic when they are added: take it out first
+  // Bullet sorts bodies into static, kinematic and dynamic when they are added: take it out
+  // first, and put it back into the same collision groups
+  const btBroadphaseProxy* proxy = body.getBroadphaseHandle();
+  const int group = proxy != nullptr ? proxy->m_collisionFilterGroup : int(btBroadphaseProxy::DefaultFilter);
+  const int mask = proxy != nullptr ? proxy->m_collisionFilterMask : int(btBroadphaseProxy::AllFilter);
   world.removeRigidBody(&body);
   body.setCollisionFlags(body.getCollisionFlags() & ~btCollisionObject::CF_KINEMATIC_OBJECT &
                          ~btCollisionObject::CF_STATIC_OBJECT);
   body.setMassProps(static_cast<btScalar>(mass), inertia);
   body.updateInertiaTensor();
   body.setFlags(body.getFlags() | BT_DISABLE_WORLD_GRAVITY);
-  world.addRigidBody(&body);
+  world.addRigidBody(&body, group, mask);
   body.setGravity(btVector3(0, 0, 0));
   body.setLinearVelocity(btVector3(0, 0, 0));
   body.setAngularVelocity(btVector3(0, 0, 0));
-  body.setActivationState(DISABLE_DEACTIVATION);
+  body.forceActivationState(DISABLE_DEACTIVATION);
   return CoupledTool(body, *coupling);
 }
 

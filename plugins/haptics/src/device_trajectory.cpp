@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -66,7 +67,7 @@ Result<DeviceTrajectory> DeviceTrajectory::parse(const std::string& text, const 
     if (!header_read) {
       for (int c = 0; c < kColumns; ++c) {
         if (static_cast<int>(fields.size()) != kColumns || fields[c] != kColumnNames[c])
-          return Status::error(where + "the first line must be the header " + kHeader);
+          return Status::error(where + "the first line must be the header " + kHeader + ", not " + shown(content));
       }
       header_read = true;
       continue;
@@ -83,12 +84,17 @@ Result<DeviceTrajectory> DeviceTrajectory::parse(const std::string& text, const 
     sample.time = values[0];
     sample.position = Eigen::Vector3d(values[1], values[2], values[3]);
     const Eigen::Quaterniond q(values[4], values[5], values[6], values[7]);
-    if (!(q.norm() > 1e-9)) return Status::error(where + "the orientation qw, qx, qy, qz must not be zero");
+    // its length must be a number: 1e200 squared is not
+    if (!(q.norm() > 1e-9 && std::isfinite(q.squaredNorm())))
+      return Status::error(where + "the orientation qw, qx, qy, qz must be neither zero nor larger than 1e150");
     sample.orientation = q.normalized();
     if (!samples.empty() && !(sample.time > samples.back().time))
       return Status::error(where + "time_s " + fields[0] + " must be later than the line before's");
-    if (!(sample.position.cwiseAbs().maxCoeff() <= 1000.0))
-      return Status::error(where + "the position is more than 1 km from the origin: is it in metres?");
+    if (!(sample.position.cwiseAbs().maxCoeff() <= 1000.0)) {
+      char position[96];
+      std::snprintf(position, sizeof position, "(%.4g, %.4g, %.4g)", values[1], values[2], values[3]);
+      return Status::error(where + "the position " + position + " is more than 1 km from the origin: is it in metres?");
+    }
     samples.push_back(sample);
   }
   if (!header_read) return Status::error(source + ": empty; expected the header " + kHeader + " and samples");

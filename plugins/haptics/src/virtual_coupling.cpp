@@ -30,11 +30,12 @@ Eigen::Vector3d rotation_between(const Eigen::Matrix3d& from, const Eigen::Matri
 }
 
 // Explicit damped spring x'' = -w^2 x - 2 z w x' over steps h / w (the velocity first, then the
-// position with it): stable while h < 1 / z and h < 2 (sqrt(z^2 + 1) - z).
+// position with it): stable while h < 1 / z and h < 2 (sqrt(z^2 + 1) - z). While the tool touches
+// tissue its position follows the soft sub-steps instead (bullet's hand_over), which the
+// coupling's own damping must keep stable: h < 4 z, so an undamped coupling never is.
 double stable_step_times_frequency(double damping_ratio) {
-  double bound = 2.0 * (std::sqrt(damping_ratio * damping_ratio + 1.0) - damping_ratio);
-  if (damping_ratio > 0) bound = std::min(bound, 1.0 / damping_ratio);
-  return bound;
+  const double z = damping_ratio;
+  return std::min({2.0 * (std::sqrt(z * z + 1.0) - z), 1.0 / z, 4.0 * z});
 }
 
 // Half the bound: the coupled tool then follows the device as the continuous coupling would, not
@@ -47,15 +48,18 @@ Result<VirtualCoupling> VirtualCoupling::create(const CouplingSettings& settings
   const auto positive = [](double v) { return std::isfinite(v) && v > 0; };
   if (!positive(settings.stiffness))
     return Status::error("coupling stiffness " + number(settings.stiffness) + " N/m: must be a number > 0");
-  if (!(std::isfinite(settings.damping_ratio) && settings.damping_ratio >= 0))
-    return Status::error("coupling damping ratio " + number(settings.damping_ratio) + ": must be a number >= 0");
+  if (!positive(settings.damping_ratio))
+    return Status::error("coupling damping ratio " + number(settings.damping_ratio) +
+                         ": must be a number > 0 (an undamped coupling is unstable against tissue)");
   if (!positive(settings.force_limit))
     return Status::error("coupling force limit " + number(settings.force_limit) + " N: must be a number > 0");
   if (!positive(settings.torque_limit))
     return Status::error("coupling torque limit " + number(settings.torque_limit) + " N m: must be a number > 0");
   if (!positive(tool.mass)) return Status::error("tool mass " + number(tool.mass) + " kg: must be a number > 0");
   if (!(tool.principal_inertia.allFinite() && (tool.principal_inertia.array() > 0).all()))
-    return Status::error("tool inertia: each principal moment must be a number > 0 kg m^2");
+    return Status::error("tool inertia (" + number(tool.principal_inertia.x()) + ", " +
+                         number(tool.principal_inertia.y()) + ", " + number(tool.principal_inertia.z()) +
+                         ") kg m^2: each principal moment must be a number > 0");
   if (!tool.tip.matrix().allFinite()) return Status::error("tool tip pose: must be finite");
   return VirtualCoupling(settings, tool);
 }

@@ -17,7 +17,9 @@ class CoupledTool {
   /// Makes `body`, already in `world` (a scripted, kinematic tool or a dynamic body), a dynamic
   /// body of `mass` [kg] with its collision shape's inertia, that never sleeps and has no weight:
   /// the hand holding the device carries it. `tip` is the tool's frame (the device's point) in the
-  /// body's centre-of-mass frame. Errors name the setting at fault.
+  /// body's centre-of-mass frame. Its collision groups stay. A body a Bullet joint holds is moved
+  /// by Bullet's step alone (the soft sub-steps leave jointed bodies to it), so its coupling acts
+  /// there only. Errors name the setting at fault.
   static Result<CoupledTool> create(btDiscreteDynamicsWorld& world, btRigidBody& body, double mass,
                                     const Eigen::Isometry3d& tip, const CouplingSettings& settings);
 

@@ -17,7 +17,7 @@ namespace cubespring::haptics {
 /// one stiffness sets both and a slender tool's small inertia about its axis cannot make it stiff.
 struct CouplingSettings {
   double stiffness = 1000.0;   ///< linear [N/m]: a desktop device renders 1000-2000 N/m
-  double damping_ratio = 1.0;  ///< of the spring with the tool's mass (1: critical) [-]
+  double damping_ratio = 1.0;  ///< of the spring with the tool's mass (1: critical; > 0) [-]
   double force_limit = 10.0;   ///< the most force the coupling exerts [N]
   double torque_limit = 1.0;   ///< the most torque about the tool's centre of mass [N m]
 };
@@ -52,7 +52,7 @@ struct ToolInertia {
 
 class VirtualCoupling {
  public:
-  /// Checks the settings (finite, positive stiffness and limits, damping ratio >= 0) and the tool.
+  /// Checks the settings (finite, positive stiffness, damping ratio and limits) and the tool.
   static Result<VirtualCoupling> create(const CouplingSettings& settings, const ToolInertia& tool);
 
   /// The force and the torque about the centre of mass that the coupling puts on the tool's body
