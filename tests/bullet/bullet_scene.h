@@ -93,4 +93,19 @@ inline bullet::SoftBodySettings block(const Eigen::Vector3i& cells, double h, co
   return settings;
 }
 
+/// The contact issue's block on the ground: 10 x 10 x 5 cm of 5 kPa tissue (nu = 0.45, density
+/// 1060, mass damping 40/s) in exact-bending cells of 5 mm, centred on x = y = 0, its base at z = 0.
+inline bullet::SoftBody* add_tissue_block(BulletScene& scene, double friction = 0.3) {
+  Material tissue;
+  tissue.young_modulus = 5e3;
+  tissue.poisson_ratio = 0.45;
+  tissue.density = 1060;
+  tissue.mass_damping = 40;
+  bullet::SoftBodySettings settings = block({20, 20, 10}, 0.005, tissue);
+  settings.lattice.model = CellModel::kExactBending;
+  settings.contact.friction = friction;
+  scene.add_floor();
+  return scene.add_soft(settings);
+}
+
 }  // namespace cubespring::test

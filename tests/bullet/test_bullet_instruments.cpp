@@ -19,19 +19,9 @@
 namespace cubespring {
 namespace {
 
-// The block on the ground, and the box above its centre, its bottom 5 mm + extra_height over it.
-bullet::SoftBody* add_tissue_block(test::BulletScene& scene, double friction = 0.3) {
-  Material tissue;
-  tissue.young_modulus = 5e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060;
-  tissue.mass_damping = 40;
-  bullet::SoftBodySettings settings = test::block({20, 20, 10}, 0.005, tissue);
-  settings.lattice.model = CellModel::kExactBending;
-  settings.contact.friction = friction;
-  scene.add_floor();
-  return scene.add_soft(settings);
-}
+// The block on the ground (test::add_tissue_block), and the box above its centre, its bottom
+// 5 mm + extra_height over it.
+using test::add_tissue_block;
 
 constexpr double kHalf = 0.015;  // the box's half side [m]
 

@@ -60,16 +60,7 @@ class HapticPress : public ::testing::TestWithParam<double> {};
 
 TEST_P(HapticPress, NeitherOscillatesNorTunnelsAndDragsSmoothly) {
   test::BulletScene scene;
-  Material tissue;
-  tissue.young_modulus = 5e3;
-  tissue.poisson_ratio = 0.45;
-  tissue.density = 1060;
-  tissue.mass_damping = 40;
-  bullet::SoftBodySettings settings = test::block({20, 20, 10}, 0.005, tissue);
-  settings.lattice.model = CellModel::kExactBending;
-  settings.contact.friction = 0.3;
-  scene.add_floor();
-  bullet::SoftBody* soft = scene.add_soft(settings);
+  bullet::SoftBody* soft = test::add_tissue_block(scene, 0.3);
   ASSERT_NE(soft, nullptr);
   scene.run(1.0, kStep);  // settle under its weight
   const double top = top_of(*soft);
