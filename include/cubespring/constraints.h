@@ -42,6 +42,10 @@ class Constraints {
                                          int axis, double displacement);
   /// Drives component `axis` of one node to `coordinate` [m] (the others as they were).
   Status prescribe_axis_position(int node, int axis, double coordinate);
+  /// The same constraints on the body after its nodes were renumbered (cells removed,
+  /// cell_removal.h): node n becomes node new_node[n] of `num_new_nodes`, or is dropped where
+  /// that is -1. Errors name a map of the wrong size or an index out of range.
+  Result<Constraints> renumbered(const std::vector<int>& new_node, int num_new_nodes) const;
   /// Makes a node free again.
   Status release(int node);
 

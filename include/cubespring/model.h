@@ -26,6 +26,9 @@ inline constexpr int kEdgesPerAxis = 4;
 /// by build_model(); the time-varying part lives in State. Arrays are flat, one entry per item.
 struct Model {
   CellModel cell_model = CellModel::kBaudet2007;
+  /// The exact-bending parameters the cells were calibrated with (read for kExactBending), so that
+  /// lattice_desc() gives back the description the model was built from.
+  ExactBendingParameters exact_bending;
   /// kNeoHookean: each cell's correction and inversion recovery are replaced by the neo-Hookean
   /// cell term of law_constants (cell_correction and cell_inversion_stiffness are zero); both the
   /// spring lists and the grid passes have the term.
@@ -124,6 +127,12 @@ struct Model {
   static std::uint64_t next_revision();
   std::vector<std::int64_t> sorted_node_keys_;  // grid key of each node, ascending (= node order)
 };
+
+/// The description `model` was built from: its cells (in the model's order), materials, cell
+/// model and law, so that build_model() of it gives the same arrays; a cut body is rebuilt from it
+/// without the cells it lost (cell_removal.h). Arrays changed in place after build_model() (a
+/// stiffness, say) are not in it.
+LatticeDesc lattice_desc(const Model& model);
 
 /// Inversion recovery stiffness as a multiple of the cell material's Young's modulus
 /// (Model::cell_inversion_stiffness; the recovery acts in the force passes, forces.h).

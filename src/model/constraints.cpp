@@ -107,6 +107,27 @@ Status Constraints::release(int node) {
   return {};
 }
 
+Result<Constraints> Constraints::renumbered(const std::vector<int>& new_node, int num_new_nodes) const {
+  if (new_node.size() != driven_.size()) {
+    return Status::error("the node map has " + std::to_string(new_node.size()) + " entries for " +
+                         std::to_string(driven_.size()) + " constrained nodes");
+  }
+  Constraints carried;
+  carried.driven_.assign(static_cast<std::size_t>(std::max(num_new_nodes, 0)), 0);
+  carried.target_.setZero(3, std::max(num_new_nodes, 0));
+  for (std::size_t n = 0; n < new_node.size(); ++n) {
+    const int to = new_node[n];
+    if (to == -1) continue;
+    if (to < 0 || to >= num_new_nodes) {
+      return Status::error("the node map sends node " + std::to_string(n) + " to " + std::to_string(to) +
+                           ", outside the new body's " + std::to_string(num_new_nodes) + " nodes");
+    }
+    carried.driven_[static_cast<std::size_t>(to)] = driven_[n];
+    carried.target_.col(to) = target_.col(static_cast<Eigen::Index>(n));
+  }
+  return carried;
+}
+
 int Constraints::num_driven() const {
   return static_cast<int>(driven_.size() - std::count(driven_.begin(), driven_.end(), std::uint8_t{0}));
 }

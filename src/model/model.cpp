@@ -112,6 +112,19 @@ std::uint64_t Model::next_revision() {
 
 void Model::mark_changed() { revision = next_revision(); }
 
+LatticeDesc lattice_desc(const Model& model) {
+  LatticeDesc desc;
+  desc.cell_size = model.cell_size;
+  desc.origin = model.origin;
+  desc.cells = model.cell_grid_index;
+  desc.materials = model.materials;
+  desc.cell_material = model.cell_material;
+  desc.model = model.cell_model;
+  desc.exact_bending = model.exact_bending;
+  desc.law = model.cell_law;
+  return desc;
+}
+
 void update_grid_layout(Model& model, double /*min_fill*/) { model.mark_changed(); }
 
 int Model::node_at(const Eigen::Vector3i& grid_index) const {
@@ -135,6 +148,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   Model model;
   model.cell_model = desc.model;
   model.cell_law = desc.law;
+  model.exact_bending = desc.exact_bending;
   model.cell_size = desc.cell_size;
   model.origin = desc.origin;
   model.materials = desc.materials;
