@@ -89,6 +89,7 @@ void drop_unseen(Map& kept) {
 
 ContactProjector::ContactProjector(SoftBody& body)
     : body_(body),
+      model_revision_(body.model_.revision),
       window_(kWindowMarginCells * body.model_.cell_size.maxCoeff(),
               largest_spread(body.surface_offset_, body.surface_weight_)) {}
 

@@ -4,6 +4,7 @@
 // (docs/bullet-plugin.md, section 2): found in contact_projector.cpp, solved in contact_sweeps.cpp.
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <utility>
 #include <vector>
@@ -26,6 +27,9 @@ namespace cubespring::bullet {
 class ContactProjector {
  public:
   explicit ContactProjector(SoftBody& body);
+  /// The revision of the body's model it was made for: a cut body has a new one, and the
+  /// projector's per-node and per-vertex buffers are then another body's.
+  std::uint64_t model_revision() const { return model_revision_; }
 
   /// After the lattice's step: refreshes the surface where `tracks` may touch it (the window), or
   /// all of it when the window no longer holds, and chooses it again.
@@ -133,6 +137,7 @@ class ContactProjector {
   void refresh_moved();
 
   SoftBody& body_;
+  std::uint64_t model_revision_ = 0;
   SurfaceWindow window_;
   // The surface's odometer: the farthest any vertex a round tool reads moved, summed over every
   // refresh of them [m]. No vertex near a round tool has moved farther than the difference of two

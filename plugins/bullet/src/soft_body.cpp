@@ -13,6 +13,8 @@
 
 #include "contact_surface.h"
 #include "cubespring/bullet/conversions.h"
+#include "cubespring/cell_removal.h"
+#include "cubespring/cut_surface.h"
 #include "surface_refinement.h"
 #include "surface_topology.h"
 
@@ -55,8 +57,13 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   if (settings.law == CellLaw::kNeoHookean) lattice.model = CellModel::kExactBending;
   Result<Model> model = build_model(lattice);
   if (!model) return model.status();
+  return assemble(settings, std::move(model).value());
+}
+
+Result<std::unique_ptr<SoftBody>> SoftBody::assemble(const SoftBodySettings& settings, Model model) {
   std::unique_ptr<SoftBody> body(new SoftBody());
-  body->model_ = std::move(model).value();
+  body->settings_ = settings;
+  body->model_ = std::move(model);
   body->state_ = rest_state(body->model_);
   body->constraints_ = Constraints(body->model_);
   body->loads_.nodal_forces.setZero(3, body->model_.num_nodes());
@@ -115,6 +122,61 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   body->surface_topology_ =
       std::make_shared<const SurfaceTopology>(surface_topology(body->surface_positions_, body->surface_triangles_));
   return body;
+}
+
+Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
+  Result<CellRemoval> removal = cubespring::remove_cells(model_, state_, constraints_, cells);
+  if (!removal) return Status::error("remove_cells: " + removal.message());
+  Cut cut;
+  cut.removed_cells = removal->removed_cells;
+  cut.removed_mass = removal->removed_mass;
+  cut.removed_momentum = removal->removed_momentum;
+  cut.pieces = removal->pieces;
+  cut.new_node = removal->new_node;
+  cut.new_cell = removal->new_cell;
+  Loads loads = loads_;
+  loads.nodal_forces = carry_node_columns(*removal, loads_.nodal_forces);
+  SoftBodySettings settings = settings_;
+  settings.lattice = lattice_desc(removal->model);
+  if (settings_.visual_mesh) {  // clipped where the cells left, and capped there
+    std::vector<Eigen::Vector3i> removed;
+    for (int c = 0; c < model_.num_cells(); ++c) {
+      if (cut.new_cell[static_cast<std::size_t>(c)] < 0)
+        removed.push_back(model_.cell_grid_index[static_cast<std::size_t>(c)]);
+    }
+    CutSurface surface = cut_surface(*settings_.visual_mesh, model_.origin, model_.cell_size, removed);
+    cut.visual_vertex_source = std::move(surface.vertex_source);
+    cut.cap_triangles = surface.cap_triangles;
+    settings.visual_mesh = std::move(surface.mesh);
+  }
+  Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(removal->model));
+  if (!rebuilt) return Status::error("remove_cells: " + rebuilt.message());
+  SoftBody& after = **rebuilt;
+  after.state_ = std::move(removal->state);
+  after.constraints_ = std::move(removal->constraints);
+  after.loads_ = std::move(loads);
+  after.step_settings_ = step_settings_;  // threads and the integrator as the user left them
+  after.times_ = times_;
+  after.last_report_ = last_report_;
+  after.stop_message_ = stop_message_;
+  for (const std::optional<Anchor>& anchor : anchors_) {
+    std::optional<Anchor> carried;
+    if (anchor) {
+      Anchor kept{anchor->body, {}, Eigen::Matrix3Xd(3, static_cast<Eigen::Index>(anchor->nodes.size()))};
+      for (std::size_t i = 0; i < anchor->nodes.size(); ++i) {
+        const int node = cut.new_node[static_cast<std::size_t>(anchor->nodes[i])];
+        if (node < 0) continue;
+        kept.local.col(static_cast<Eigen::Index>(kept.nodes.size())) = anchor->local.col(static_cast<Eigen::Index>(i));
+        kept.nodes.push_back(node);
+      }
+      kept.local.conservativeResize(3, static_cast<Eigen::Index>(kept.nodes.size()));
+      if (!kept.nodes.empty()) carried = std::move(kept);
+    }
+    after.anchors_.push_back(std::move(carried));
+  }
+  after.update_surface();
+  *this = std::move(after);
+  return cut;
 }
 
 Status SoftBody::set_threads(int threads) {

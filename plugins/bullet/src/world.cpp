@@ -253,7 +253,7 @@ void World::advance_soft_body(SoftBody& body, double step_length, double kinemat
   const Eigen::Matrix3Xd user_forces = body.loads_.nodal_forces;
   const bool held_anchors = has_held_anchors(body, tracks, anchor_track);
   std::unique_ptr<ContactProjector>& kept = projectors_[&body];
-  if (!kept) kept = std::make_unique<ContactProjector>(body);
+  if (!kept || kept->model_revision() != body.model_.revision) kept = std::make_unique<ContactProjector>(body);
   ContactProjector& projector = *kept;
   Eigen::Matrix3Xd velocities_before;
   for (int k = 0; remaining > 0; ++k) {

@@ -120,6 +120,30 @@ class SoftBody {
   Status detach(int anchor_id);
   const std::vector<std::optional<Anchor>>& anchors() const { return anchors_; }
 
+  /// What remove_cells() took out, and where the remaining nodes and cells went.
+  struct Cut {
+    int removed_cells = 0;
+    double removed_mass = 0.0;                        ///< [kg]
+    Eigen::Vector3d removed_momentum{0.0, 0.0, 0.0};  ///< what left with the cells [kg m/s]
+    int pieces = 0;             ///< pieces the body is in after the cut (cells sharing a node count as joined)
+    std::vector<int> new_node;  ///< old node n is node new_node[n] now, or -1: it left
+    std::vector<int> new_cell;  ///< old cell c is cell new_cell[c] now, or -1: removed
+    /// With a visual mesh: which of its vertices before the cut each vertex of the new one is,
+    /// or -1 (made by the cut); and how many of its triangles, the last ones, close the cut.
+    std::vector<int> visual_vertex_source;
+    int cap_triangles = 0;
+  };
+  /// Takes cells (indices into model()'s cells) out of the body between world steps, as a
+  /// cautery tool burns tissue away (cubespring/cell_removal.h, docs/cutting.md). The body is
+  /// rebuilt from its remaining cells with its settings: model, sub-step, added inertia and
+  /// contact surface anew; its state, constraints, nodal loads and anchors carried node by node
+  /// (an anchor whose nodes all left is detached; ids stay). A visual mesh is clipped where the
+  /// cells left and capped there with their faces (cut_surface.h), so that it stays closed and
+  /// shows the cut's inside; the visual mesh's vertex indices change (embedding()). Node, cell
+  /// and vertex indices change: the result maps them. A body cut through keeps its pieces, each
+  /// moving on its own. Errors, with nothing changed: a cell out of range, a cut that would leave
+  /// no cell.
+  Result<Cut> remove_cells(const std::vector<int>& cells);
   /// The first surface triangle a segment from `from` to `to` [m] crosses: for picking.
   struct RayHit {
     int triangle = -1;
@@ -176,6 +200,9 @@ class SoftBody {
   friend class World;
   friend class ContactProjector;
   SoftBody() = default;
+  /// The body of `model` (built from settings.lattice) with settings' sub-step, inertia and
+  /// contact surface, at rest.
+  static Result<std::unique_ptr<SoftBody>> assemble(const SoftBodySettings& settings, Model model);
   /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
   void index_vertices_by_node();
   /// Contact-surface vertex v from its nodes; returns how far it moved, squared [m^2] (a square
@@ -198,6 +225,7 @@ class SoftBody {
   /// them if read); returns the farthest a recomputed one moved [m].
   double update_moved_surface(const std::vector<char>& refresh_now);
 
+  SoftBodySettings settings_;  // what it was made of (a cut body is made again of its remaining cells)
   Model model_;
   State state_;
   Constraints constraints_;

@@ -1,0 +1,164 @@
+// SPDX-FileCopyrightText: 2026 cubespring authors
+// SPDX-License-Identifier: MIT
+// Cells taken out of a soft body in a Bullet world between steps (SoftBody::remove_cells): the
+// body is rebuilt around its remaining cells, its pieces move on their own, and contact acts on
+// the surface the cut left.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "bullet_scene.h"
+#include "cubespring/shapes.h"
+#include "cubespring/voxelize.h"
+
+namespace cubespring {
+namespace {
+
+Eigen::Vector3d momentum(const bullet::SoftBody& body) { return body.state().velocities * body.model().mass; }
+
+// Every edge walked as often one way as the other: closed, consistently oriented.
+bool closed_and_oriented(const Eigen::Matrix3Xi& triangles) {
+  std::map<std::pair<int, int>, int> walks;
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = triangles(k, t), b = triangles((k + 1) % 3, t);
+      walks[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
+    }
+  }
+  return std::all_of(walks.begin(), walks.end(), [](const auto& walk) { return walk.second == 0; });
+}
+
+// A 4 x 4 x 10 cm column of 10 kPa tissue hanging from its top layer of nodes, 1 cm above a table;
+// a slab of cells 4 cm up is cut out: the lower piece falls, lands and the table carries it, while
+// the upper piece hangs on.
+TEST(BulletCutting, APieceCutOffFallsAndTheTableCarriesIt) {
+  test::BulletScene scene;
+  btRigidBody* floor = scene.add_floor(-0.01);
+  bullet::SoftBodySettings settings = test::block({4, 4, 10}, 0.01, soft_tissue(1e4));
+  settings.contact.friction = 0.3;
+  bullet::SoftBody* body = scene.add_soft(settings);
+  ASSERT_NE(body, nullptr);
+  ASSERT_TRUE(body->constraints().fix_box(body->model(), {-1, -1, 0.0999}, {1, 1, 1}).ok());
+  scene.run(0.5);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  EXPECT_NEAR(scene.world().getContactWrench(floor).force.z(), 0.0, 1e-12) << "hangs clear of the table";
+
+  std::vector<int> slab;
+  for (int c = 0; c < body->model().num_cells(); ++c) {
+    if (body->model().cell_grid_index[static_cast<std::size_t>(c)].z() == 4) slab.push_back(c);
+  }
+  const double mass_before = body->model().total_mass();
+  const Eigen::Vector3d momentum_before = momentum(*body);
+  Result<bullet::SoftBody::Cut> cut = body->remove_cells(slab);
+  ASSERT_TRUE(cut.ok()) << cut.message();
+  EXPECT_EQ(cut->removed_cells, 16);
+  EXPECT_EQ(cut->pieces, 2);
+  EXPECT_NEAR(body->model().total_mass(), mass_before - cut->removed_mass, 1e-12 * mass_before);
+  EXPECT_NEAR(cut->removed_mass, 16 * 1e-6 * settings.lattice.materials[0].density, 1e-15);
+  EXPECT_LT((momentum_before - momentum(*body) - cut->removed_momentum).norm(),
+            1e-12 * (body->state().velocities.cwiseAbs() * body->model().mass).norm() + 1e-18);
+  EXPECT_EQ(body->constraints().num_driven(), 25) << "the top layer stays held";
+
+  std::vector<int> lower;
+  double lower_mass = 0.0;
+  for (int n = 0; n < body->model().num_nodes(); ++n) {
+    if (body->model().node_grid_index[static_cast<std::size_t>(n)].z() <= 4) {
+      lower.push_back(n);
+      lower_mass += body->model().mass[n];
+    }
+  }
+  scene.run(2.0);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  double lowest = 1.0, centre = 0.0, speed_sq = 0.0;
+  for (const int n : lower) {
+    lowest = std::min(lowest, body->state().positions(2, n));
+    centre += body->model().mass[n] * body->state().positions(2, n) / lower_mass;
+    speed_sq += body->model().mass[n] * body->state().velocities.col(n).squaredNorm() / lower_mass;
+  }
+  const double ground = -scene.world().getContactWrench(floor).force.z();
+  std::printf(
+      "lower piece: %.4f kg, lowest node z = %.2f mm, centre %.2f mm, rms speed %.2e m/s; table %.5f N for %.5f N\n",
+      lower_mass, 1e3 * lowest, 1e3 * centre, std::sqrt(speed_sq), ground, lower_mass * 9.81);
+  EXPECT_NEAR(lowest, -0.01, 0.5e-3) << "it rests on the table";
+  EXPECT_LT(std::sqrt(speed_sq), 1e-3);
+  EXPECT_NEAR(ground, lower_mass * 9.81, 0.01 * lower_mass * 9.81);
+}
+
+// A 10 cm ball of 10 kPa tissue, its sphere the visual mesh, settled on a table; a cautery
+// channel (the cells within 9 mm of its vertical axis, above its middle) is burnt into its top.
+// The visual surface stays closed with a cap down the channel, the ball settles again, and the
+// table carries what is left of it.
+TEST(BulletCutting, AChannelBurntIntoABallKeepsItsSurfaceClosed) {
+  TriangleMesh sphere = sphere_mesh(0.05, 4, {0, 0, 0.05});
+  VoxelizeOptions options;
+  options.cell_size = Eigen::Vector3d::Constant(0.008);
+  Result<Voxelization> voxels = voxelize(sphere, options);
+  ASSERT_TRUE(voxels.ok()) << voxels.message();
+  bullet::SoftBodySettings settings;
+  settings.lattice = lattice_from_voxels(*voxels, {soft_tissue(1e4)}, CellModel::kExactBending);
+  settings.visual_mesh = sphere;
+  settings.contact.friction = 0.3;
+  test::BulletScene scene;
+  btRigidBody* floor = scene.add_floor();
+  bullet::SoftBody* body = scene.add_soft(settings);
+  ASSERT_NE(body, nullptr);
+  scene.run(1.0);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+
+  std::vector<int> channel;
+  const Model& model = body->model();
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const Eigen::Vector3d centre =
+        model.origin + (model.cell_grid_index[static_cast<std::size_t>(c)].cast<double>().array() + 0.5)
+                           .matrix()
+                           .cwiseProduct(model.cell_size);
+    if (centre.head<2>().norm() < 0.009 && centre.z() > 0.05) channel.push_back(c);
+  }
+  ASSERT_GT(channel.size(), 10u);
+  const int visual_before = body->embedding().num_vertices();
+  Result<bullet::SoftBody::Cut> cut = body->remove_cells(channel);
+  ASSERT_TRUE(cut.ok()) << cut.message();
+  EXPECT_EQ(cut->pieces, 1);
+  EXPECT_GT(cut->cap_triangles, 0);
+  EXPECT_EQ(static_cast<int>(cut->visual_vertex_source.size()), body->embedding().num_vertices());
+  EXPECT_NE(body->embedding().num_vertices(), visual_before);
+  EXPECT_TRUE(closed_and_oriented(body->embedding().triangles));
+  EXPECT_TRUE(closed_and_oriented(body->surface_triangles())) << "the contact surface too";
+
+  scene.run(1.5);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  const double weight = body->model().total_mass() * 9.81;
+  const double ground = -scene.world().getContactWrench(floor).force.z();
+  const double rms_speed = std::sqrt((body->state().velocities.colwise().squaredNorm() * body->model().mass).value() /
+                                     body->model().total_mass());
+  std::printf("%zu cells burnt away: %d cap triangles; table %.4f N for a weight of %.4f N, rms speed %.2e m/s\n",
+              channel.size(), cut->cap_triangles, ground, weight, rms_speed);
+  EXPECT_NEAR(ground, weight, 0.01 * weight);
+  EXPECT_LT(rms_speed, 1e-3);
+}
+
+TEST(BulletCutting, ACutThatCannotBeMadeChangesNothing) {
+  test::BulletScene scene;
+  bullet::SoftBody* body = scene.add_soft(test::block({3, 3, 3}, 0.01, soft_tissue(1e4)));
+  ASSERT_NE(body, nullptr);
+  const std::uint64_t revision = body->model().revision;
+  Result<bullet::SoftBody::Cut> out_of_range = body->remove_cells({2, 27});
+  ASSERT_FALSE(out_of_range.ok());
+  EXPECT_NE(out_of_range.message().find("cell 27 to remove is out of range"), std::string::npos)
+      << out_of_range.message();
+  std::vector<int> all(27);
+  for (int c = 0; c < 27; ++c) all[static_cast<std::size_t>(c)] = c;
+  Result<bullet::SoftBody::Cut> everything = body->remove_cells(all);
+  ASSERT_FALSE(everything.ok());
+  EXPECT_NE(everything.message().find("remove the body instead"), std::string::npos) << everything.message();
+  EXPECT_EQ(body->model().revision, revision);
+  EXPECT_EQ(body->model().num_cells(), 27);
+}
+
+}  // namespace
+}  // namespace cubespring
