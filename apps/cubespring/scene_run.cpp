@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #include "scene_run.h"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -23,7 +24,7 @@ namespace cubespring::app {
 
 const char* const kToolForceCsvHeader =
     "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,"
-    "penetration_m";
+    "penetration_m,cells_removed";
 
 namespace {
 
@@ -91,10 +92,30 @@ void record_forces(scene::SceneWorld& world, double t, std::ostream& csv, std::v
         w.torque + (pose * tool.shape_offset.translation() - pose.translation()).cross(w.force);
     csv << time << ',' << tool.name << ',' << number(w.force.x()) << ',' << number(w.force.y()) << ','
         << number(w.force.z()) << ',' << number(w.force.norm()) << ',' << number(torque.x()) << ','
-        << number(torque.y()) << ',' << number(torque.z()) << ',' << w.contacts << ',' << number(w.penetration) << '\n';
+        << number(torque.y()) << ',' << number(torque.z()) << ',' << w.contacts << ',' << number(w.penetration) << ','
+        << tool.cells_removed << '\n';
     series[i].time.push_back(t);
     series[i].magnitude.push_back(w.force.norm());
   }
+}
+
+// The cells the cutting tools reach burnt away, once the frames already queued are drawn (they
+// read the organ as it was); a line on stderr for each step that cuts.
+Status cut_organ(scene::SceneWorld& world, scene::SceneFrames& frames, FrameWriter& writer, double t) {
+  const std::vector<scene::ToolCut> due = world.cuts_due();
+  if (due.empty()) return {};
+  if (Status s = writer.finish(); !s) return s;
+  const auto start = std::chrono::steady_clock::now();
+  Result<bullet::SoftBody::Cut> cut = world.apply_cuts(due);
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!cut) return Status::error(cut.message() + " (at t = " + seconds(t) + ")");
+  frames.carry_rest(cut->visual_vertex_source, scene::SceneFrames::organ_vertices(world));
+  std::string tools;
+  for (const scene::ToolCut& tool_cut : due) tools += (tools.empty() ? "" : ", ") + world.tools()[tool_cut.tool].name;
+  std::fprintf(stderr, "t = %.3f s: %s removed %d cells (%.2f g) in %.1f ms; the organ has %d cells in %d piece%s\n", t,
+               tools.c_str(), cut->removed_cells, 1e3 * cut->removed_mass, 1e3 * took,
+               world.organ().model().num_cells(), cut->pieces, cut->pieces == 1 ? "" : "s");
+  return {};
 }
 
 }  // namespace
@@ -141,6 +162,7 @@ Result<RunOutput> run_scene(const scene::Scene& scene, int threads) {
     if (n > 0) {
       world.place_tools(t);  // where the step ends: Bullet derives the tools' velocities from it
       if (Status s = world.step(dt); !s) return Status::error(s.message() + " (at t = " + seconds(t) + ")");
+      if (Status s = cut_organ(world, frames, writer, t); !s) return s;
       record_forces(world, t, csv, series);
     }
     while (next_frame < frame_count && frame_at[static_cast<std::size_t>(next_frame)] <= n) {

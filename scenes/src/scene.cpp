@@ -164,7 +164,7 @@ Status read_keyframe(const JsonFields& fields, Keyframe& keyframe) {
 }
 
 Status read_tool(const JsonFields& fields, const SceneContext& context, int index, ToolSpec& tool) {
-  if (Status s = fields.check_keys({"name", "mesh", "scale", "capsule", "mass", "keyframes"}); !s) return s;
+  if (Status s = fields.check_keys({"name", "mesh", "scale", "capsule", "mass", "keyframes", "cut"}); !s) return s;
   tool.name = "tool" + std::to_string(index);
   if (Status s = fields.string("name", tool.name); !s) return s;
   if (tool.name.empty() || tool.name.find_first_of(",\"\n") != std::string::npos) {
@@ -202,6 +202,23 @@ Status read_tool(const JsonFields& fields, const SceneContext& context, int inde
                          "length", "times the scale is " + size + " m, more than a tool's " + text(kMaxToolSize) + " m")
                    : fields.error("scale", "makes the capsule " + size + " m long, more than a tool's " +
                                                text(kMaxToolSize) + " m");
+  }
+  if (fields.has("cut")) {
+    Result<JsonFields> cut = fields.object("cut");
+    if (!cut) return cut.status();
+    if (Status s = cut->check_keys({"mode", "force_threshold"}); !s) return s;
+    std::string mode = "remove";
+    if (Status s = cut->string("mode", mode); !s) return s;
+    if (mode == "separate") {
+      return cut->error("mode",
+                        "\"separate\" (a blade that splits the tissue along its path) is not built yet; "
+                        "\"remove\" (a cautery that burns the cells it reaches) is");
+    }
+    if (mode != "remove") return cut->error("mode", "must be \"remove\", got \"" + mode + "\"");
+    if (!tool.capsule) return fields.error("cut", "needs the tool's capsule: a cautery cuts with its round tip");
+    CutSpec spec;
+    if (Status s = cut->non_negative("force_threshold", spec.force_threshold); !s) return s;
+    tool.cut = spec;
   }
   if (fields.has("keyframes")) {
     Result<std::vector<JsonFields>> keyframes = fields.objects("keyframes");

@@ -37,6 +37,16 @@ Result<SceneFrames> SceneFrames::create(const Scene& scene) {
   return SceneFrames(std::move(renderer).value(), scene);
 }
 
+void SceneFrames::carry_rest(const std::vector<int>& vertex_source, const Eigen::Matrix3Xd& vertices) {
+  Eigen::Matrix3Xd rest = vertices;
+  for (Eigen::Index v = 0; v < rest.cols(); ++v) {
+    const int source =
+        v < static_cast<Eigen::Index>(vertex_source.size()) ? vertex_source[static_cast<std::size_t>(v)] : -1;
+    if (source >= 0 && source < rest_vertices_.cols()) rest.col(v) = rest_vertices_.col(source);
+  }
+  rest_vertices_ = std::move(rest);
+}
+
 Eigen::Matrix3Xd SceneFrames::organ_vertices(SceneWorld& world) {
   return organ_vertices(world, world.organ().state().positions);
 }
@@ -50,7 +60,7 @@ Eigen::Matrix3Xd SceneFrames::organ_vertices(SceneWorld& world, const Eigen::Mat
 
 Status SceneFrames::draw_organ(SceneWorld& world, const Eigen::Matrix3Xd& organ_positions,
                                const Eigen::Matrix3Xd& vertices) {
-  const Eigen::Matrix3Xi& triangles = world.organ_mesh().triangles;
+  const Eigen::Matrix3Xi& triangles = world.organ().embedding().triangles;  // as cut, if it was
   vertex_normals(vertices, triangles, organ_normals_scratch_);
   const ColourMap map = ColourMap::viridis();
   if (spec_.colour_map == ColourMode::kDisplacement && rest_vertices_.cols() == vertices.cols()) {

@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #include "cubespring/scene/scene_world.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -177,6 +178,9 @@ Status SceneWorld::build_tools(const Scene& scene) {
       tool.shape = std::make_unique<btCapsuleShapeZ>(static_cast<btScalar>(radius),
                                                      static_cast<btScalar>(length - 2.0 * radius));
       tool.shape_offset.translation() = Eigen::Vector3d(0, 0, 0.5 * length);
+      tool.radius = radius;
+      tool.length = length;
+      tool.cut = spec.cut;
     } else {
       // contact sees the mesh's convex hull; a small margin, as the plugin ignores it (doc section 5)
       auto hull = std::make_unique<btConvexHullShape>();
@@ -217,6 +221,61 @@ Status SceneWorld::step(double dt) {
   if (!world_->getSoftBodyError().empty())
     return Status::error("the organ went unstable: " + world_->getSoftBodyError());
   return {};
+}
+
+// How far beyond its surface a cautery burns [cells]: contact keeps the tissue outside the tool, so
+// the cells it presses on keep their centres about half a cell from its surface; at half a cell
+// the demo liver's cautery burnt 8 cells along its 2 cm path and ploughed the rest aside, at three
+// quarters 15.
+constexpr double kCauteryReachCells = 0.75;
+
+std::vector<ToolCut> SceneWorld::cuts_due() const {
+  std::vector<ToolCut> cuts;
+  const Model& model = organ_->model();
+  const Eigen::Matrix3Xd& x = organ_->state().positions;
+  for (std::size_t i = 0; i < tools_.size(); ++i) {
+    const SceneTool& tool = tools_[i];
+    if (!tool.cut) continue;
+    if (tool.cut->force_threshold > 0.0 &&
+        !(world_->getContactWrench(tool.body.get()).force.norm() >= tool.cut->force_threshold)) {
+      continue;
+    }
+    // the capsule's axis, tip first, in the scene's frame
+    const Eigen::Isometry3d pose = tool_pose(tool);
+    const Eigen::Vector3d a = pose * Eigen::Vector3d(0, 0, tool.radius);
+    const Eigen::Vector3d b = pose * Eigen::Vector3d(0, 0, tool.length - tool.radius);
+    const double reach = tool.radius + kCauteryReachCells * model.cell_size.minCoeff();
+    const Eigen::Vector3d axis = b - a;
+    ToolCut cut{i, {}};
+    for (int c = 0; c < model.num_cells(); ++c) {
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      for (const int node : model.cell_nodes[static_cast<std::size_t>(c)]) centre += x.col(node);
+      centre /= kCornersPerCell;
+      const double along = std::clamp((centre - a).dot(axis) / axis.squaredNorm(), 0.0, 1.0);
+      if ((a + along * axis - centre).squaredNorm() <= reach * reach) cut.cells.push_back(c);
+    }
+    if (!cut.cells.empty()) cuts.push_back(std::move(cut));
+  }
+  return cuts;
+}
+
+Result<bullet::SoftBody::Cut> SceneWorld::apply_cuts(const std::vector<ToolCut>& cuts) {
+  std::vector<int> cells;
+  std::vector<int> counted(static_cast<std::size_t>(organ_->model().num_cells()), -1);  // the tool a cell counts to
+  for (const ToolCut& cut : cuts) {
+    for (const int c : cut.cells) {
+      int& owner = counted[static_cast<std::size_t>(c)];
+      if (owner >= 0) continue;
+      owner = static_cast<int>(cut.tool);
+      cells.push_back(c);
+    }
+  }
+  Result<bullet::SoftBody::Cut> done = organ_->remove_cells(cells);
+  if (!done) return Status::error("cutting the organ: " + done.message());
+  for (const int owner : counted) {
+    if (owner >= 0) ++tools_[static_cast<std::size_t>(owner)].cells_removed;
+  }
+  return done;
 }
 
 Eigen::Isometry3d SceneWorld::tool_pose(const SceneTool& tool) const {

@@ -174,11 +174,12 @@ TEST(DemoScene, DefaultSceneRunsEndToEndAndItsForceAndFramesFollowTheProbe) {
   ASSERT_TRUE(std::getline(csv, line));
   EXPECT_EQ(line,
             "time_s,tool,force_x_N,force_y_N,force_z_N,force_magnitude_N,torque_x_Nm,torque_y_Nm,torque_z_Nm,contacts,"
-            "penetration_m");
+            "penetration_m,cells_removed");
   std::vector<ForceRow> rows;
   while (std::getline(csv, line)) {
     const std::vector<std::string> fields = split(line);
-    ASSERT_EQ(fields.size(), 11u) << line;
+    ASSERT_EQ(fields.size(), 12u) << line;
+    EXPECT_EQ(fields[11], "0") << "the probe does not cut";
     const double fx = std::stod(fields[2]);
     const double fy = std::stod(fields[3]);
     const double fz = std::stod(fields[4]);
@@ -366,7 +367,8 @@ TEST(FineLiverScene, TheProbeHoldsAndItsForceIsSmoothAtOneKilohertz) {
   double deepest = 0.0;
   while (std::getline(csv, line)) {
     const std::vector<std::string> fields = split(line);
-    ASSERT_EQ(fields.size(), 11u) << line;
+    ASSERT_EQ(fields.size(), 12u) << line;
+    EXPECT_EQ(fields[11], "0") << "the probe does not cut";
     time.push_back(std::stod(fields[0]));
     force.push_back(std::stod(fields[5]));
     deepest = std::max(deepest, std::stod(fields[10]));
@@ -400,6 +402,44 @@ TEST(FineLiverScene, TheProbeHoldsAndItsForceIsSmoothAtOneKilohertz) {
               100 * roughness);
   EXPECT_GT(mean, 0.2) << "the probe feels the tissue while it drags";
   EXPECT_LT(roughness, 0.03);
+}
+
+// The cautery scene: its tool burns a channel into the liver as it burrows and moves, the CSV
+// counts the cells it took (none before it reaches the surface, more as it goes, never fewer),
+// stderr says when, and the run keeps going with the organ cut.
+TEST(CauteryScene, TheCauteryBurnsAChannelAndTheRunReportsIt) {
+  const std::string scene_path = std::string(CUBESPRING_DATA_DIR) + "/scenes/liver_cautery.json";
+  TempDir dir;
+  const ToolRun run = run_tool("run " + scene_path + " --frames 3 --width 64 --height 36 --out " + dir.path().string());
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NE(run.out.find(": cautery removed "), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("in 1 piece"), std::string::npos) << run.out;
+
+  std::ifstream csv(dir.path() / "tool_forces.csv");
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  int removed = 0;
+  int steps_that_cut = 0;
+  while (std::getline(csv, line)) {
+    const std::vector<std::string> fields = split(line);
+    ASSERT_EQ(fields.size(), 12u) << line;
+    const int now = std::stoi(fields[11]);
+    if (std::stod(fields[0]) < 0.4) {
+      EXPECT_EQ(now, 0) << "the tool is still above the liver: " << line;
+    }
+    EXPECT_GE(now, removed) << line;
+    steps_that_cut += now > removed;
+    removed = now;
+  }
+  std::printf("cautery: %d cells removed in %d steps\n", removed, steps_that_cut);
+  EXPECT_GE(removed, 5);
+  std::size_t lines = 0;
+  for (std::size_t at = run.out.find(": cautery removed "); at != std::string::npos;
+       at = run.out.find(": cautery removed ", at + 1)) {
+    ++lines;
+  }
+  EXPECT_EQ(lines, static_cast<std::size_t>(steps_that_cut)) << "a line on stderr for each step that cut";
+  EXPECT_TRUE(fs::exists(dir.path() / "frame_0002.png"));
 }
 
 TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
@@ -664,6 +704,15 @@ TEST_F(SceneErrors, WrongTypesElsewhereNameTheirKeys) {
       {"{\"tools\": [{\"capsule\": {\"radius\": 0.0025, \"length\": 0.2}, \"scale\": 1e300}]}",
        "\"length\" in \"tools[0].capsule\" times the scale is 2e+299 m"},
       {"{\"gravity\": [0, 0, -1e308]}", "\"gravity\" of (0, 0, -1e+308) m/s^2 is stronger than 1000 m/s^2"},
+      // a tool that cuts: what it can be, and what is not built
+      {"{\"tools\": [{\"cut\": {\"mode\": \"separate\"}}]}",
+       "\"mode\" in \"tools[0].cut\" \"separate\" (a blade that splits the tissue along its path) is not built yet"},
+      {"{\"tools\": [{\"cut\": {\"mode\": \"burn\"}}]}",
+       "\"mode\" in \"tools[0].cut\" must be \"remove\", got \"burn\""},
+      {"{\"tools\": [{\"cut\": {\"force_threshold\": -1}}]}",
+       "\"force_threshold\" in \"tools[0].cut\" must be >= 0, got -1"},
+      {"{\"tools\": [{\"mesh\": \"" + mesh() + "\", \"cut\": {}}]}",
+       "\"cut\" in \"tools[0]\" needs the tool's capsule: a cautery cuts with its round tip"},
       {"{\"duration\": 1,\n \"duration\": 2}", "scene.json:2: duplicate key \"duration\""},
       {"{\"duration\": 1,\n}", "scene.json:2: JSON syntax error"},
   };

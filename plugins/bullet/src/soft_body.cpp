@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,6 +27,34 @@ namespace {
 // blew up unsplit), and the demo's liver, whose edges reach 1.5 cells, is not split (at 1 cell
 // its run took 16% longer).
 constexpr double kContactEdgeCells = 1.5;
+
+// The grid cells whose part of the visual surface a cut takes away: the removed cells, and the
+// empty ones around them, where the surface hangs from the lattice beyond its cells (up to half
+// a cell, voxelize.h) and may have hung from a removed cell; left, it would hang a cell or more
+// from the nearest one left.
+std::vector<Eigen::Vector3i> surface_cut_cells(const Model& model, const std::vector<int>& new_cell) {
+  std::set<std::array<int, 3>> kept;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
+    if (new_cell[static_cast<std::size_t>(c)] >= 0) kept.insert({g.x(), g.y(), g.z()});
+  }
+  std::set<std::array<int, 3>> cut;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    if (new_cell[static_cast<std::size_t>(c)] >= 0) continue;
+    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
+    for (int i = -1; i <= 1; ++i) {
+      for (int j = -1; j <= 1; ++j) {
+        for (int k = -1; k <= 1; ++k) {
+          const std::array<int, 3> around{g.x() + i, g.y() + j, g.z() + k};
+          if (kept.count(around) == 0) cut.insert(around);
+        }
+      }
+    }
+  }
+  std::vector<Eigen::Vector3i> cells;
+  for (const std::array<int, 3>& g : cut) cells.emplace_back(g[0], g[1], g[2]);
+  return cells;
+}
 
 }  // namespace
 
@@ -139,12 +168,8 @@ Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
   SoftBodySettings settings = settings_;
   settings.lattice = lattice_desc(removal->model);
   if (settings_.visual_mesh) {  // clipped where the cells left, and capped there
-    std::vector<Eigen::Vector3i> removed;
-    for (int c = 0; c < model_.num_cells(); ++c) {
-      if (cut.new_cell[static_cast<std::size_t>(c)] < 0)
-        removed.push_back(model_.cell_grid_index[static_cast<std::size_t>(c)]);
-    }
-    CutSurface surface = cut_surface(*settings_.visual_mesh, model_.origin, model_.cell_size, removed);
+    CutSurface surface =
+        cut_surface(*settings_.visual_mesh, model_.origin, model_.cell_size, surface_cut_cells(model_, cut.new_cell));
     cut.visual_vertex_source = std::move(surface.vertex_source);
     cut.cap_triangles = surface.cap_triangles;
     settings.visual_mesh = std::move(surface.mesh);

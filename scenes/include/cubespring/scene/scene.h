@@ -79,6 +79,14 @@ struct CapsuleSpec {
 
 /// A rigid tool: a mesh is drawn, and without a capsule its convex hull is the contact shape; a
 /// capsule is the contact shape, and is drawn when there is no mesh.
+/// How a tool cuts (`tools[i].cut`).
+struct CutSpec {
+  /// The organ's cells whose centre comes within the tool's radius plus three quarters of a cell
+  /// of its capsule's axis are removed (the cautery's burn), while the force on the tool is at
+  /// least this [N] (0: whenever they are within reach).
+  double force_threshold = 0.0;
+};
+
 struct ToolSpec {
   std::string name;
   std::string mesh;    ///< surface mesh (resolved path), or empty
@@ -88,6 +96,9 @@ struct ToolSpec {
   /// body of this mass, its inertia that of its contact shape; a scripted tool ignores it.
   double mass = 0.02;
   std::vector<Keyframe> keyframes;  ///< sorted by time
+  /// A cautery tool (`cut: {"mode": "remove", "force_threshold": N}`): after each step it burns
+  /// away the organ's cells within its reach (docs/scene-format.md); its capsule is its tip.
+  std::optional<CutSpec> cut;
 };
 
 enum class ColourMode { kDisplacement, kStrain, kNone };

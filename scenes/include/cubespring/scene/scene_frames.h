@@ -6,6 +6,8 @@
 
 #include <memory>
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "cubespring/render/renderer.h"
@@ -25,6 +27,10 @@ class SceneFrames {
   static Eigen::Matrix3Xd organ_vertices(SceneWorld& world, const Eigen::Matrix3Xd& organ_positions);
   /// Where displacement is measured from (the surface at t = 0) [m].
   void set_rest(const Eigen::Matrix3Xd& rest_vertices) { rest_vertices_ = rest_vertices; }
+  /// After a cut changed the organ's surface (bullet::SoftBody::Cut::visual_vertex_source): each
+  /// vertex kept keeps where its displacement is measured from; a vertex the cut made measures
+  /// from where it is now, `vertices` [m].
+  void carry_rest(const std::vector<int>& vertex_source, const Eigen::Matrix3Xd& vertices);
 
   /// The scene as it is, tools at time t [s].
   Result<Image> render(SceneWorld& world, double t);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,17 @@ struct SceneTool {
   std::unique_ptr<btCollisionShape> shape;
   std::unique_ptr<btRigidBody> body;  ///< kinematic, unless the caller took the tool
   bool scripted = true;               ///< place_tools() moves it (false once taken: take_tool())
+  /// A cautery tool (ToolSpec::cut): its capsule's radius and length [m], and the organ's cells
+  /// it has burnt away so far.
+  std::optional<CutSpec> cut;
+  double radius = 0.0, length = 0.0;
+  int cells_removed = 0;
+};
+
+/// The organ's cells one cutting tool reaches after a step (SceneWorld::cuts_due()).
+struct ToolCut {
+  std::size_t tool = 0;  ///< index into SceneWorld::tools()
+  std::vector<int> cells;
 };
 
 /// What the organ became, for the log.
@@ -56,8 +68,18 @@ class SceneWorld {
   /// organ went unstable.
   Status step(double dt);
 
+  /// The organ's cells each cutting tool reaches now: within its radius plus three quarters of a
+  /// cell of its capsule's axis (cell centres, the mean of their nodes), while the force on it is
+  /// at least its threshold; tools that reach none are left out. Read after step().
+  std::vector<ToolCut> cuts_due() const;
+  /// Takes those cells out of the organ (bullet::SoftBody::remove_cells: its surface clipped and
+  /// capped) and counts each to the first tool that reached it. Nothing that reads the organ may
+  /// run meanwhile (a frame being drawn): its model, embedding and state change size.
+  Result<bullet::SoftBody::Cut> apply_cuts(const std::vector<ToolCut>& cuts);
+
   bullet::World& world() { return *world_; }
   bullet::SoftBody& organ() { return *organ_; }
+  /// The organ's mesh as loaded (the surface drawn is organ().embedding(), which a cut changes).
   const TriangleMesh& organ_mesh() const { return organ_mesh_; }
   const std::vector<SceneTool>& tools() const { return tools_; }
   const OrganSummary& summary() const { return summary_; }
