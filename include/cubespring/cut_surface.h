@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,13 +24,21 @@ struct CutSurface {
   /// vertices come first, in their order; those no kept triangle uses are left out.
   std::vector<int> vertex_source;
   int cap_triangles = 0;  ///< the last ones of the mesh
+  /// What each vertex is (an input vertex, where an input edge crosses a cut's plane, where a grid
+  /// line crosses an input triangle, a grid corner): two cuts of one surface give a point they
+  /// both make the same key, so the vertices of one can be matched with the other's.
+  std::vector<std::array<long long, 4>> vertex_keys;
 };
 
 /// Cuts `surface` (rest positions [m], closed, counter-clockwise seen from outside) by the cells
 /// `removed` (grid indices) of the grid with node (0, 0, 0) at `origin` [m] and cells of
-/// `cell_size` [m]. The grid's planes are moved by a millionth of a cell, so that a surface built
-/// on them (a box on the lattice's faces) is cut in general position. A cavity's wall that a cut
-/// opens is not capped where it crosses a removed cell's face (its hole is covered instead).
+/// `cell_size` [m]. The cut's planes are the grid's moved by about a millionth of a cell, unequally
+/// along the axes, so that a surface built on the grid's planes (a box on the lattice's faces) is
+/// cut in general position. Each part of the surface (MeshPart) is closed and capped on its own (a
+/// tumour's surface inside a liver's). Cut a body's surface again from the surface it started with, by every
+/// cell removed so far: a cut surface's caps lie on the cut's planes, and cutting them again on the
+/// same planes is not in general position. A cavity's wall that a cut opens is not capped where it
+/// crosses a removed cell's face (its hole is covered instead).
 CutSurface cut_surface(const TriangleMesh& surface, const Eigen::Vector3d& origin, const Eigen::Vector3d& cell_size,
                        const std::vector<Eigen::Vector3i>& removed);
 

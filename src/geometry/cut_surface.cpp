@@ -21,9 +21,10 @@
 namespace cubespring {
 namespace {
 
-// The grid's planes sit this far [cells] from the lattice's own: a mesh built on those (a box on
-// the lattice's faces) is then cut in general position.
-constexpr double kPlaneShift = 1e-6;
+// The cut's planes sit this far [cells] from the grid's, unequally along the axes: a mesh built on
+// the grid's planes (a box on the lattice's faces) is then cut in general position, and no grid
+// line runs along a diagonal of such a mesh's squares.
+const Eigen::Vector3d kPlaneShift(1.0e-6, 1.3e-6, 1.7e-6);
 
 // What a point is. kind 0: input vertex a; 1: input edge (a, b), a < b, crossing plane c; 2: grid
 // line of planes b < c crossing triangle a; 3: grid corner (a, b, c); 4: made in a degenerate
@@ -59,12 +60,16 @@ class Cutter {
     }
     for (const int t : unclipped) emit_unclipped(t);
     const std::size_t before_caps = triangles_.size();
-    for (const auto& cell : removed_) {
-      for (int axis = 0; axis < 3; ++axis) {
-        for (const int side : {-1, 1}) {
-          std::array<int, 3> neighbour = cell;
-          neighbour[static_cast<std::size_t>(axis)] += side;
-          if (removed_.count(neighbour) == 0) cap_face(cell, axis, side);
+    // each part is capped on its own: a tumour's surface inside a liver's closes its own cut
+    const std::vector<MeshPart> parts = parts_of(surface_);
+    for (std::size_t part = 0; part < parts.size(); ++part) {
+      for (const auto& cell : removed_) {
+        for (int axis = 0; axis < 3; ++axis) {
+          for (const int side : {-1, 1}) {
+            std::array<int, 3> neighbour = cell;
+            neighbour[static_cast<std::size_t>(axis)] += side;
+            if (removed_.count(neighbour) == 0) cap_face(cell, axis, side, parts[part]);
+          }
         }
       }
     }
@@ -73,11 +78,11 @@ class Cutter {
 
  private:
   double plane(int axis, long long index) const {
-    return origin_[axis] + (static_cast<double>(index) + kPlaneShift) * cell_size_[axis];
+    return origin_[axis] + (static_cast<double>(index) + kPlaneShift[axis]) * cell_size_[axis];
   }
   double plane_at(long long id) const { return plane(plane_axis(id), (id - plane_axis(id)) / 4); }
   long long cell_along(int axis, double x) const {
-    return static_cast<long long>(std::floor((x - origin_[axis]) / cell_size_[axis] - kPlaneShift));
+    return static_cast<long long>(std::floor((x - origin_[axis]) / cell_size_[axis] - kPlaneShift[axis]));
   }
   bool is_removed(long long i, long long j, long long k) const {
     return removed_.count({static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)}) != 0;
@@ -185,29 +190,36 @@ class Cutter {
       }
     }
     if (!reaches) return false;
-    std::vector<std::vector<Point>> pieces{{input_vertex(surface_.triangles(0, t)),
-                                            input_vertex(surface_.triangles(1, t)),
-                                            input_vertex(surface_.triangles(2, t))}};
+    // each piece knows its cell from the sides of the planes it was split on (a centre on a
+    // plane, as a cap of an earlier cut lies, would round to either cell)
+    struct Piece {
+      std::vector<Point> points;
+      std::array<long long, 3> cell;
+    };
+    std::vector<Piece> pieces{{{input_vertex(surface_.triangles(0, t)), input_vertex(surface_.triangles(1, t)),
+                                input_vertex(surface_.triangles(2, t))},
+                               first}};
     for (int axis = 0; axis < 3; ++axis) {
-      for (long long index = first[static_cast<std::size_t>(axis)] + 1; index <= last[static_cast<std::size_t>(axis)];
-           ++index) {
-        std::vector<std::vector<Point>> next;
-        for (const std::vector<Point>& piece : pieces) {
-          std::vector<Point> below, above;
-          split(t, piece, plane_id(axis, index), below, above);
-          if (below.size() >= 3) next.push_back(std::move(below));
-          if (above.size() >= 3) next.push_back(std::move(above));
+      const std::size_t a = static_cast<std::size_t>(axis);
+      for (long long index = first[a] + 1; index <= last[a]; ++index) {
+        std::vector<Piece> next;
+        for (const Piece& piece : pieces) {
+          if (piece.cell[a] != index - 1) {  // beyond this plane already
+            next.push_back(piece);
+            continue;
+          }
+          Piece below{{}, piece.cell}, above{{}, piece.cell};
+          above.cell[a] = index;
+          split(t, piece.points, plane_id(axis, index), below.points, above.points);
+          if (below.points.size() >= 3) next.push_back(std::move(below));
+          if (above.points.size() >= 3) next.push_back(std::move(above));
         }
         pieces = std::move(next);
       }
     }
     const Eigen::Vector3d normal = triangle_normal(t);
-    for (const std::vector<Point>& piece : pieces) {
-      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (const Point& x : piece) centre += x.x / static_cast<double>(piece.size());
-      if (!is_removed(cell_along(0, centre.x()), cell_along(1, centre.y()), cell_along(2, centre.z()))) {
-        emit_polygon(piece, normal);
-      }
+    for (const Piece& piece : pieces) {
+      if (!is_removed(piece.cell[0], piece.cell[1], piece.cell[2])) emit_polygon(piece.points, normal);
     }
     return true;
   }
@@ -287,15 +299,16 @@ class Cutter {
   }
 
   // The section of the solid by a plane: a segment for each triangle across it.
-  const std::vector<SectionSegment>& section(long long id) {
-    const auto found = sections_.find(id);
+  const std::vector<SectionSegment>& section(long long id, const MeshPart& part) {
+    const std::pair<long long, int> key{id, part.first_triangle};
+    const auto found = sections_.find(key);
     if (found != sections_.end()) return found->second;
-    std::vector<SectionSegment>& segments = sections_[id];
+    std::vector<SectionSegment>& segments = sections_[key];
     const int axis = plane_axis(id);
     const double c = plane_at(id);
     Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
     along_axis[axis] = 1.0;
-    for (int t = 0; t < surface_.num_triangles(); ++t) {
+    for (int t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
       std::vector<Point> ends;
       for (int k = 0; k < 3; ++k) {
         const int p = surface_.triangles(k, t), q = surface_.triangles((k + 1) % 3, t);
@@ -311,10 +324,10 @@ class Cutter {
 
   // The cap on the face of removed cell `cell` toward `side` along `axis`: the part of the face
   // inside the solid, facing into the cell.
-  void cap_face(const std::array<int, 3>& cell, int axis, int side) {
+  void cap_face(const std::array<int, 3>& cell, int axis, int side, const MeshPart& part) {
     const long long index = cell[static_cast<std::size_t>(axis)] + (side > 0 ? 1 : 0);
     const long long id = plane_id(axis, index);
-    const std::vector<SectionSegment>& segments = section(id);
+    const std::vector<SectionSegment>& segments = section(id, part);
     const int b = (axis + 1) % 3, d = (axis + 2) % 3;
     const long long b0 = cell[static_cast<std::size_t>(b)], d0 = cell[static_cast<std::size_t>(d)];
     // the square's sides, counter-clockwise seen from +axis: d = d0, b = b0 + 1, d = d0 + 1, b = b0
@@ -497,6 +510,7 @@ class Cutter {
       index[key] = v;
       cut.mesh.vertices.col(v) = positions_.at(key);
       cut.vertex_source.push_back(key[0] == 0 ? static_cast<int>(key[1]) : -1);
+      cut.vertex_keys.push_back(key);
     }
     cut.mesh.triangles.resize(3, static_cast<Eigen::Index>(triangles_.size()));
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
@@ -510,8 +524,8 @@ class Cutter {
   const TriangleMesh& surface_;
   Eigen::Vector3d origin_, cell_size_;
   std::set<std::array<int, 3>> removed_;
-  std::map<std::array<int, 2>, std::set<Key>> edge_points_;  // the cut's points on each input edge
-  std::map<long long, std::vector<SectionSegment>> sections_;
+  std::map<std::array<int, 2>, std::set<Key>> edge_points_;                    // the cut's points on each input edge
+  std::map<std::pair<long long, int>, std::vector<SectionSegment>> sections_;  // by plane and part
   std::map<Key, Eigen::Vector3d> positions_;  // each point's position, as first computed
   std::vector<std::array<Key, 3>> triangles_;
   long long degenerate_ = 0;

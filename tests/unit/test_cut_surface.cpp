@@ -3,6 +3,7 @@
 // A closed surface cut by removed cells stays closed and consistently oriented, keeps what lies
 // outside them as it was, and encloses the solid less the removed cells' share of it.
 #include <algorithm>
+#include <array>
 #include <map>
 #include <random>
 #include <utility>
@@ -102,6 +103,35 @@ TEST(CutSurface, ASphereCutAnywhereStaysClosed) {
   EXPECT_EQ(none.mesh.vertices, sphere.vertices);
   EXPECT_EQ(none.mesh.triangles, sphere.triangles);
   EXPECT_EQ(none.cap_triangles, 0);
+}
+
+// A body cut again and again: each cut from the surface it started with, by every cell removed so
+// far (as the Bullet plugin does): closed and oriented after each, its volume falling as cells go,
+// and a point two cuts both make (the same key) in the same place.
+TEST(CutSurface, CutsThatGrowStayClosedAndKeepTheirPoints) {
+  const TriangleMesh sphere = sphere_mesh(0.03, 3);
+  const Eigen::Vector3d origin = Eigen::Vector3d::Constant(-0.04), h = Eigen::Vector3d::Constant(0.007);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> cell(3, 8);
+  std::vector<Eigen::Vector3i> removed;
+  CutSurface last = cut_surface(sphere, origin, h, removed);
+  for (int cut = 0; cut < 40; ++cut) {
+    removed.emplace_back(cell(rng), cell(rng), cell(rng));
+    const CutSurface next = cut_surface(sphere, origin, h, removed);
+    ASSERT_TRUE(closed_and_oriented(next.mesh)) << "cut " << cut;
+    EXPECT_LE(volume(next.mesh), volume(last.mesh) * (1 + 1e-9)) << "cut " << cut;
+    std::map<std::array<long long, 4>, int> before;
+    for (int v = 0; v < last.mesh.num_vertices(); ++v) before[last.vertex_keys[static_cast<std::size_t>(v)]] = v;
+    int shared = 0;
+    for (int v = 0; v < next.mesh.num_vertices(); ++v) {
+      const auto found = before.find(next.vertex_keys[static_cast<std::size_t>(v)]);
+      if (found == before.end()) continue;
+      ++shared;
+      EXPECT_LT((next.mesh.vertices.col(v) - last.mesh.vertices.col(found->second)).norm(), 1e-15) << "cut " << cut;
+    }
+    EXPECT_GT(shared, sphere.num_vertices() / 2);
+    last = next;
+  }
 }
 
 // A box on the grid's own planes (a lattice's outside), cut through its middle by a slab: two

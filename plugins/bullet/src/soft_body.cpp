@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -28,20 +29,15 @@ namespace {
 // its run took 16% longer).
 constexpr double kContactEdgeCells = 1.5;
 
-// The grid cells whose part of the visual surface a cut takes away: the removed cells, and the
-// empty ones around them, where the surface hangs from the lattice beyond its cells (up to half
-// a cell, voxelize.h) and may have hung from a removed cell; left, it would hang a cell or more
-// from the nearest one left.
-std::vector<Eigen::Vector3i> surface_cut_cells(const Model& model, const std::vector<int>& new_cell) {
+// The grid cells whose part of the visual surface the cuts take away: every removed cell, and the
+// empty ones around them, where the surface hangs from the lattice beyond its cells (voxelize.h)
+// and may have hung from a removed cell; left, it would hang a cell or more from the nearest one
+// left (a corner of a cap a cell above the lattice's top, extrapolated twice the cell's height).
+std::vector<Eigen::Vector3i> surface_cut_cells(const Model& remaining, const std::vector<Eigen::Vector3i>& removed) {
   std::set<std::array<int, 3>> kept;
-  for (int c = 0; c < model.num_cells(); ++c) {
-    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
-    if (new_cell[static_cast<std::size_t>(c)] >= 0) kept.insert({g.x(), g.y(), g.z()});
-  }
+  for (const Eigen::Vector3i& g : remaining.cell_grid_index) kept.insert({g.x(), g.y(), g.z()});
   std::set<std::array<int, 3>> cut;
-  for (int c = 0; c < model.num_cells(); ++c) {
-    if (new_cell[static_cast<std::size_t>(c)] >= 0) continue;
-    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
+  for (const Eigen::Vector3i& g : removed) {
     for (int i = -1; i <= 1; ++i) {
       for (int j = -1; j <= 1; ++j) {
         for (int k = -1; k <= 1; ++k) {
@@ -86,7 +82,9 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   if (settings.law == CellLaw::kNeoHookean) lattice.model = CellModel::kExactBending;
   Result<Model> model = build_model(lattice);
   if (!model) return model.status();
-  return assemble(settings, std::move(model).value());
+  Result<std::unique_ptr<SoftBody>> body = assemble(settings, std::move(model).value());
+  if (body) (*body)->uncut_visual_mesh_ = settings.visual_mesh;
+  return body;
 }
 
 Result<std::unique_ptr<SoftBody>> SoftBody::assemble(const SoftBodySettings& settings, Model model) {
@@ -167,11 +165,27 @@ Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
   loads.nodal_forces = carry_node_columns(*removal, loads_.nodal_forces);
   SoftBodySettings settings = settings_;
   settings.lattice = lattice_desc(removal->model);
-  if (settings_.visual_mesh) {  // clipped where the cells left, and capped there
+  std::vector<Eigen::Vector3i> removed = removed_cells_;
+  for (int c = 0; c < model_.num_cells(); ++c) {
+    if (cut.new_cell[static_cast<std::size_t>(c)] < 0)
+      removed.push_back(model_.cell_grid_index[static_cast<std::size_t>(c)]);
+  }
+  std::vector<std::array<long long, 4>> visual_keys;
+  if (uncut_visual_mesh_) {  // the surface it started with, cut by every cell gone, and capped there
     CutSurface surface =
-        cut_surface(*settings_.visual_mesh, model_.origin, model_.cell_size, surface_cut_cells(model_, cut.new_cell));
-    cut.visual_vertex_source = std::move(surface.vertex_source);
+        cut_surface(*uncut_visual_mesh_, model_.origin, model_.cell_size, surface_cut_cells(removal->model, removed));
+    // which vertex before the cut each one is: keys name the same points in every cut
+    std::map<std::array<long long, 4>, int> before;
+    for (int v = 0; v < embedding_.num_vertices(); ++v) {
+      before[visual_keys_.empty() ? std::array<long long, 4>{0, v, 0, 0} : visual_keys_[static_cast<std::size_t>(v)]] =
+          v;
+    }
+    for (const std::array<long long, 4>& key : surface.vertex_keys) {
+      const auto found = before.find(key);
+      cut.visual_vertex_source.push_back(found == before.end() ? -1 : found->second);
+    }
     cut.cap_triangles = surface.cap_triangles;
+    visual_keys = std::move(surface.vertex_keys);
     settings.visual_mesh = std::move(surface.mesh);
   }
   Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(removal->model));
@@ -184,6 +198,9 @@ Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
   after.times_ = times_;
   after.last_report_ = last_report_;
   after.stop_message_ = stop_message_;
+  after.uncut_visual_mesh_ = std::move(uncut_visual_mesh_);
+  after.removed_cells_ = std::move(removed);
+  after.visual_keys_ = std::move(visual_keys);
   for (const std::optional<Anchor>& anchor : anchors_) {
     std::optional<Anchor> carried;
     if (anchor) {

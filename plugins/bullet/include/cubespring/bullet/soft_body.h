@@ -2,6 +2,7 @@
 // SPDX-License-Identifier: MIT
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -226,6 +227,11 @@ class SoftBody {
   double update_moved_surface(const std::vector<char>& refresh_now);
 
   SoftBodySettings settings_;  // what it was made of (a cut body is made again of its remaining cells)
+  // cutting: the visual mesh as the user gave it, every cell removed (grid indices), and what each
+  // vertex of the visual mesh as cut is (CutSurface::vertex_keys; empty before the first cut)
+  std::optional<TriangleMesh> uncut_visual_mesh_;
+  std::vector<Eigen::Vector3i> removed_cells_;
+  std::vector<std::array<long long, 4>> visual_keys_;
   Model model_;
   State state_;
   Constraints constraints_;
