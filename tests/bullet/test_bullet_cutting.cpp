@@ -6,13 +6,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "bullet_scene.h"
+#include "closed_surface.h"
 #include "cubespring/embedding.h"
 #include "cubespring/shapes.h"
 #include "cubespring/voxelize.h"
@@ -27,18 +27,6 @@ Eigen::Matrix3Xd visual_rest(const bullet::SoftBody& body) {
   Eigen::Matrix3Xd vertices;
   embedded_positions(body.model(), body.embedding(), body.model().rest_positions, vertices);
   return vertices;
-}
-
-// Every edge walked as often one way as the other: closed, consistently oriented.
-bool closed_and_oriented(const Eigen::Matrix3Xi& triangles) {
-  std::map<std::pair<int, int>, int> walks;
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles(k, t), b = triangles((k + 1) % 3, t);
-      walks[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
-    }
-  }
-  return std::all_of(walks.begin(), walks.end(), [](const auto& walk) { return walk.second == 0; });
 }
 
 // A 4 x 4 x 10 cm column of 10 kPa tissue hanging from its top layer of nodes, 1 cm above a table;
@@ -152,8 +140,8 @@ TEST(BulletCutting, AChannelBurntIntoABallKeepsItsSurfaceClosed) {
     EXPECT_GT(cut->cap_triangles, 0);
     ASSERT_EQ(static_cast<int>(cut->visual_vertex_source.size()), body->embedding().num_vertices());
     EXPECT_NE(body->embedding().num_vertices(), visual_before);
-    EXPECT_TRUE(closed_and_oriented(body->embedding().triangles)) << "stroke " << stroke;
-    EXPECT_TRUE(closed_and_oriented(body->surface_triangles())) << "the contact surface too, stroke " << stroke;
+    EXPECT_TRUE(test::closed_and_oriented(body->embedding().triangles)) << "stroke " << stroke;
+    EXPECT_TRUE(test::closed_and_oriented(body->surface_triangles())) << "the contact surface too, stroke " << stroke;
     // a vertex the cut kept is where it was, at rest
     const Eigen::Matrix3Xd rest_after = visual_rest(*body);
     for (int v = 0; v < rest_after.cols(); ++v) {

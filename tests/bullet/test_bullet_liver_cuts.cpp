@@ -6,7 +6,6 @@
 // count (the documented long run: docs/cutting.md).
 #include <algorithm>
 #include <cstdlib>
-#include <map>
 #include <random>
 #include <string>
 #include <utility>
@@ -15,22 +14,12 @@
 #include <gtest/gtest.h>
 
 #include "bullet_scene.h"
+#include "closed_surface.h"
 #include "cubespring/mesh/load_mesh.h"
 #include "cubespring/voxelize.h"
 
 namespace cubespring {
 namespace {
-
-bool closed_and_oriented(const Eigen::Matrix3Xi& triangles) {
-  std::map<std::pair<int, int>, int> walks;
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles(k, t), b = triangles((k + 1) % 3, t);
-      walks[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
-    }
-  }
-  return std::all_of(walks.begin(), walks.end(), [](const auto& walk) { return walk.second == 0; });
-}
 
 TEST(BulletLiverCuts, RandomCutsKeepTheLiversSurfaceClosed) {
   const char* count_text = std::getenv("CUBESPRING_RANDOM_CUTS");
@@ -78,8 +67,8 @@ TEST(BulletLiverCuts, RandomCutsKeepTheLiversSurfaceClosed) {
       Result<bullet::SoftBody::Cut> cut = body->remove_cells(cells);
       ASSERT_TRUE(cut.ok()) << "cut " << made << ": " << cut.message();
       EXPECT_NEAR(body->model().total_mass(), expected_mass - cut->removed_mass, 1e-12 * expected_mass);
-      ASSERT_TRUE(closed_and_oriented(body->embedding().triangles)) << "cut " << made << ", its visual surface";
-      ASSERT_TRUE(closed_and_oriented(body->surface_triangles())) << "cut " << made << ", its contact surface";
+      ASSERT_TRUE(test::closed_and_oriented(body->embedding().triangles)) << "cut " << made << ", its visual surface";
+      ASSERT_TRUE(test::closed_and_oriented(body->surface_triangles())) << "cut " << made << ", its contact surface";
       scene.run(0.02);
       ASSERT_TRUE(scene.world().getSoftBodyError().empty())
           << "cut " << made << ": " << scene.world().getSoftBodyError();

@@ -5,13 +5,13 @@
 // stepper that stepped the old body steps the new one as a fresh one would.
 #include <algorithm>
 #include <cstdlib>
-#include <map>
 #include <random>
 #include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "closed_surface.h"
 #include "cubespring/cell_removal.h"
 #include "cubespring/integrator.h"
 #include "cubespring/lattice_surface.h"
@@ -68,20 +68,6 @@ double cells_mass(const Model& model) {
 }
 
 Eigen::Vector3d momentum(const Model& model, const State& state) { return state.velocities * model.mass; }
-
-// Every edge of the lattice's surface is walked as often one way as the other: closed (no
-// boundary edge) and consistently oriented (an edge where cells meet along an edge only is
-// walked twice each way: non-manifold, a vertex to duplicate, but closed).
-bool closed_and_oriented(const LatticeSurface& surface) {
-  std::map<std::pair<int, int>, int> walks;  // (a, b) with a < b: +1 for a -> b, -1 for b -> a
-  for (Eigen::Index t = 0; t < surface.triangles.cols(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = surface.triangles(k, t), b = surface.triangles((k + 1) % 3, t);
-      walks[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
-    }
-  }
-  return std::all_of(walks.begin(), walks.end(), [](const auto& walk) { return walk.second == 0; });
-}
 
 // The volume the surface encloses at rest, by the divergence theorem [m^3].
 double enclosed_volume(const Model& model, const LatticeSurface& surface) {
@@ -360,7 +346,7 @@ TEST(CellRemoval, RandomCutsLeaveASoundBody) {
     constraints = std::move(removal->constraints);
     ASSERT_NEAR(model.total_mass(), cells_mass(model), 1e-12 * cells_mass(model)) << "cut " << cut;
     const LatticeSurface surface = lattice_boundary_surface(model);
-    ASSERT_TRUE(closed_and_oriented(surface)) << "cut " << cut;
+    ASSERT_TRUE(test::closed_and_oriented(surface.triangles)) << "cut " << cut;
     ASSERT_NEAR(enclosed_volume(model, surface), model.num_cells() * model.rest_cell_volume(),
                 1e-9 * model.num_cells() * model.rest_cell_volume())
         << "cut " << cut;

@@ -12,23 +12,12 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
+#include "closed_surface.h"
 #include "cubespring/cut_surface.h"
 #include "cubespring/shapes.h"
 
 namespace cubespring {
 namespace {
-
-// Every edge walked as often one way as the other: no boundary edge, consistent orientation.
-bool closed_and_oriented(const TriangleMesh& mesh) {
-  std::map<std::pair<int, int>, int> walks;
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.triangles(k, t), b = mesh.triangles((k + 1) % 3, t);
-      walks[{std::min(a, b), std::max(a, b)}] += a < b ? 1 : -1;
-    }
-  }
-  return std::all_of(walks.begin(), walks.end(), [](const auto& walk) { return walk.second == 0; });
-}
 
 double volume(const TriangleMesh& mesh) {
   double six = 0.0;
@@ -68,7 +57,7 @@ TEST(CutSurface, ABoxLosesExactlyTheRemovedCellsShare) {
       expected -= overlap(lo, hi, cell_lo, cell_lo + h);
     }
     const CutSurface cut = cut_surface(box, origin, h, removed);
-    ASSERT_TRUE(closed_and_oriented(cut.mesh)) << "trial " << trial;
+    ASSERT_TRUE(test::closed_and_oriented(cut.mesh.triangles)) << "trial " << trial;
     EXPECT_NEAR(volume(cut.mesh), expected, 1e-5 * (hi - lo).prod()) << "trial " << trial;  // planes moved 1e-6 cell
     if (expected < (hi - lo).prod() - 1e-12) {
       EXPECT_GT(cut.cap_triangles, 0);
@@ -88,7 +77,7 @@ TEST(CutSurface, ASphereCutAnywhereStaysClosed) {
     const Eigen::Vector3i start(cell(rng), cell(rng), cell(rng));
     for (int k = 0; k < 1 + trial % 8; ++k) removed.push_back(start + Eigen::Vector3i(k, 0, k / 2));
     const CutSurface cut = cut_surface(sphere, origin, h, removed);
-    ASSERT_TRUE(closed_and_oriented(cut.mesh)) << "trial " << trial;
+    ASSERT_TRUE(test::closed_and_oriented(cut.mesh.triangles)) << "trial " << trial;
     EXPECT_LE(volume(cut.mesh), volume(sphere) * (1 + 1e-12));  // some strokes leave the sphere
     EXPECT_GT(volume(cut.mesh), volume(sphere) - static_cast<double>(removed.size()) * h.prod() * (1 + 1e-5));
     for (int v = 0; v < cut.mesh.num_vertices(); ++v) {
@@ -118,7 +107,7 @@ TEST(CutSurface, CutsThatGrowStayClosedAndKeepTheirPoints) {
   for (int cut = 0; cut < 40; ++cut) {
     removed.emplace_back(cell(rng), cell(rng), cell(rng));
     const CutSurface next = cut_surface(sphere, origin, h, removed);
-    ASSERT_TRUE(closed_and_oriented(next.mesh)) << "cut " << cut;
+    ASSERT_TRUE(test::closed_and_oriented(next.mesh.triangles)) << "cut " << cut;
     EXPECT_LE(volume(next.mesh), volume(last.mesh) * (1 + 1e-9)) << "cut " << cut;
     std::map<std::array<long long, 4>, int> before;
     for (int v = 0; v < last.mesh.num_vertices(); ++v) before[last.vertex_keys[static_cast<std::size_t>(v)]] = v;
@@ -144,7 +133,7 @@ TEST(CutSurface, ASlabThroughABoxOnTheGridLeavesTwoClosedHalves) {
     for (int k = 0; k < 2; ++k) slab.emplace_back(2, j, k);
   }
   const CutSurface cut = cut_surface(box, Eigen::Vector3d::Zero(), h, slab);
-  EXPECT_TRUE(closed_and_oriented(cut.mesh));
+  EXPECT_TRUE(test::closed_and_oriented(cut.mesh.triangles));
   EXPECT_NEAR(volume(cut.mesh), 0.04 * 0.02 * 0.02, 1e-6 * 0.05 * 0.02 * 0.02);
 }
 
