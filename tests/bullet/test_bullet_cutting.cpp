@@ -170,6 +170,49 @@ TEST(BulletCutting, AChannelBurntIntoABallKeepsItsSurfaceClosed) {
   EXPECT_LT(rms_speed, 1e-3);
 }
 
+// A column hanging from a static hook by its top nodes (an anchor): a slab cut below the hook
+// leaves the top piece held, the hook carrying only its weight; cutting the top layer of cells
+// away takes the anchor's nodes with it, the anchor is detached and what is left falls.
+TEST(BulletCutting, AnAnchorKeepsTheNodesThatRemainAndGoesWithTheLast) {
+  test::BulletScene scene;
+  btRigidBody* hook = scene.add_rigid(new btBoxShape(btVector3(0.05f, 0.05f, 0.005f)), 0.0, test::at(0, 0, 0.105));
+  bullet::SoftBody* body = scene.add_soft(test::block({2, 2, 6}, 0.01, soft_tissue(2e4)));
+  ASSERT_NE(body, nullptr);
+  const Result<int> anchor = body->anchor_box(hook, {-1, -1, 0.0599}, {1, 1, 1});
+  ASSERT_TRUE(anchor.ok()) << anchor.message();
+  scene.run(0.5);
+  const auto cells_at = [&](int layer) {
+    std::vector<int> cells;
+    for (int c = 0; c < body->model().num_cells(); ++c) {
+      if (body->model().cell_grid_index[static_cast<std::size_t>(c)].z() == layer) cells.push_back(c);
+    }
+    return cells;
+  };
+  Result<bullet::SoftBody::Cut> slab = body->remove_cells(cells_at(2));
+  ASSERT_TRUE(slab.ok()) << slab.message();
+  EXPECT_EQ(slab->pieces, 2);
+  ASSERT_TRUE(body->anchors()[static_cast<std::size_t>(*anchor)].has_value());
+  EXPECT_EQ(body->anchors()[static_cast<std::size_t>(*anchor)]->nodes.size(), 9u) << "the top face's 3 x 3 nodes";
+  scene.run(1.0);
+  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+  double top_piece_mass = 0.0;  // the cells above the slab: 3 layers of 4
+  for (int c = 0; c < body->model().num_cells(); ++c) {
+    if (body->model().cell_grid_index[static_cast<std::size_t>(c)].z() >= 3) {
+      top_piece_mass += body->model().materials[0].density * body->model().rest_cell_volume();
+    }
+  }
+  const double held = -scene.world().getContactWrench(hook).force.z();
+  std::printf("hook: %.5f N for the top piece's weight of %.5f N\n", held, top_piece_mass * 9.81);
+  EXPECT_NEAR(held, top_piece_mass * 9.81, 0.01 * top_piece_mass * 9.81);
+
+  Result<bullet::SoftBody::Cut> top = body->remove_cells(cells_at(5));
+  ASSERT_TRUE(top.ok()) << top.message();
+  EXPECT_FALSE(body->anchors()[static_cast<std::size_t>(*anchor)].has_value()) << "its nodes all left";
+  const double before = body->state().positions.row(2).maxCoeff();
+  scene.run(0.1);
+  EXPECT_LT(body->state().positions.row(2).maxCoeff(), before - 0.01) << "nothing holds it now";
+}
+
 TEST(BulletCutting, ACutThatCannotBeMadeChangesNothing) {
   test::BulletScene scene;
   bullet::SoftBody* body = scene.add_soft(test::block({3, 3, 3}, 0.01, soft_tissue(1e4)));
