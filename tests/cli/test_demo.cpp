@@ -462,7 +462,7 @@ TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
   std::string last;
   while (std::getline(csv, line)) last = line;
   const std::vector<std::string> fields = split(last);
-  ASSERT_EQ(fields.size(), 11u) << last;
+  ASSERT_EQ(fields.size(), 12u) << last;
   EXPECT_EQ(fields[1], "bar");
   const double force_z = std::stod(fields[4]);
   EXPECT_GT(force_z, 0.1) << "the tissue pushes the bar up: " << last;
