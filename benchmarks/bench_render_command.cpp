@@ -62,6 +62,14 @@ struct PhysicsParts {
   double contact_share() const { return sum() > 0 ? (surface + contact) / sum() : 0.0; }
 };
 
+// The cells the scene's cutting tools took out over the story, and the time it took [s].
+struct Cuts {
+  int steps = 0;  // world steps that cut
+  int cells = 0;
+  double seconds = 0;
+  double longest = 0;
+};
+
 double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 // "WxH;WxH;..."; an error names --sizes and the part at fault.
@@ -137,12 +145,27 @@ int run(const BenchRenderOptions& o) {
   const int steps = std::max(1, static_cast<int>(std::lround(story / scene.time_step)));
   const bullet::SoftBody::Times before = world.organ().times();
   const Clock::time_point physics = Clock::now();
+  Cuts cuts;
   for (int n = 1; n <= steps; ++n) {
     world.place_tools(n * scene.time_step);
     if (Status stepped = world.step(scene.time_step); !stepped) {
       std::cerr << "error: " << stepped.message() << "\n";
       return 1;
     }
+    // the cutting tools' cells taken out, as `run` does
+    const std::vector<scene::ToolCut> due = world.cuts_due();
+    if (due.empty()) continue;
+    const Clock::time_point cutting = Clock::now();
+    Result<bullet::SoftBody::Cut> cut = world.apply_cuts(due);
+    if (!cut) {
+      std::cerr << "error: " << cut.message() << "\n";
+      return 1;
+    }
+    const double took = seconds_since(cutting);
+    ++cuts.steps;
+    cuts.cells += cut->removed_cells;
+    cuts.seconds += took;
+    cuts.longest = std::max(cuts.longest, took);
   }
   const double physics_wall = seconds_since(physics);
   const double simulated = steps * scene.time_step;
@@ -184,7 +207,12 @@ int run(const BenchRenderOptions& o) {
                       {"contact_seconds", parts.contact},
                       {"planning_seconds", parts.planning},
                       {"other_seconds", physics_wall - parts.sum()},
-                      {"contact_share_of_sub_steps", parts.contact_share()}};
+                      {"contact_share_of_sub_steps", parts.contact_share()},
+                      {"cut_steps", cuts.steps},
+                      {"cells_removed", cuts.cells},
+                      {"cut_seconds", cuts.seconds},
+                      {"longest_cut_seconds", cuts.longest},
+                      {"world_step_seconds", scene.time_step}};
     out["render"] = nlohmann::json::array();
     for (const RenderTiming& t : timings) {
       out["render"].push_back({{"width", t.size.width},
@@ -208,6 +236,11 @@ int run(const BenchRenderOptions& o) {
       parts.sub_steps, 100 * parts.elastic / physics_wall, 100 * parts.surface / physics_wall,
       100 * parts.contact / physics_wall, 100 * parts.planning / physics_wall,
       100 * (physics_wall - parts.sum()) / physics_wall, 100 * parts.contact_share());
+  if (cuts.steps > 0) {
+    std::printf(
+        "  cutting: %d cells in %d steps, %.2f s (in 'other'), the longest cut %.1f ms for world steps of %.1f ms\n",
+        cuts.cells, cuts.steps, cuts.seconds, 1e3 * cuts.longest, 1e3 * scene.time_step);
+  }
   std::printf("%-10s %8s %8s %8s %14s\n", "picture", "draw ms", "png ms", "fps", "fps with png");
   for (const RenderTiming& t : timings) {
     char size[32];

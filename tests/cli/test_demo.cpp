@@ -440,6 +440,18 @@ TEST(CauteryScene, TheCauteryBurnsAChannelAndTheRunReportsIt) {
   }
   EXPECT_EQ(lines, static_cast<std::size_t>(steps_that_cut)) << "a line on stderr for each step that cut";
   EXPECT_TRUE(fs::exists(dir.path() / "frame_0002.png"));
+
+#ifdef CUBESPRING_HAS_BENCHMARKS
+  // the benchmark cuts as the run does, and times the cuts against the world step
+  const ToolRun bench = run_tool("bench-render " + scene_path + " --frames 1 --sizes 32x18 --json", false);
+  ASSERT_EQ(bench.exit_code, 0) << bench.out;
+  const nlohmann::json physics = nlohmann::json::parse(bench.out)["physics"];
+  EXPECT_EQ(physics["cut_steps"].get<int>(), steps_that_cut);
+  EXPECT_EQ(physics["cells_removed"].get<int>(), removed);
+  EXPECT_GT(physics["longest_cut_seconds"].get<double>(), 0.0);
+  EXPECT_GE(physics["cut_seconds"].get<double>(), physics["longest_cut_seconds"].get<double>());
+  EXPECT_LE(physics["cut_seconds"].get<double>(), physics["wall_seconds"].get<double>());
+#endif
 }
 
 TEST(DemoScene, KeyFrameOrientationTurnsTheTool) {
@@ -836,6 +848,9 @@ TEST(DemoCli, BenchRenderReportsPhysicsAndEachPictureSize) {
   EXPECT_NEAR(physics["contact_share_of_sub_steps"].get<double>(),
               (physics["surface_seconds"].get<double>() + physics["contact_seconds"].get<double>()) / parts, 1e-12);
   EXPECT_GT(j["organ"]["cells"].get<int>(), 1000);
+  EXPECT_EQ(physics["cut_steps"], 0) << "the probe does not cut";
+  EXPECT_EQ(physics["cells_removed"], 0);
+  EXPECT_NEAR(physics["world_step_seconds"].get<double>(), 0.004, 1e-12);
   ASSERT_EQ(j["render"].size(), 2u);
   EXPECT_EQ(j["render"][1]["width"], 96);
   EXPECT_EQ(j["render"][1]["height"], 54);
