@@ -1,6 +1,7 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Whether triangles make a closed, consistently oriented surface: the cutting tests' check.
+// Whether triangles make a closed, consistently oriented surface, and the volume it encloses:
+// the cutting tests' checks.
 #pragma once
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <utility>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace cubespring::test {
 
@@ -23,6 +25,16 @@ inline bool closed_and_oriented(const Eigen::Matrix3Xi& triangles) {
     }
   }
   return std::all_of(walks.begin(), walks.end(), [](const auto& walk) { return walk.second == 0; });
+}
+
+/// The volume the triangles over `vertices` enclose [m^3], by the divergence theorem (positive
+/// for a closed surface turned counter-clockwise seen from outside).
+inline double enclosed_volume(const Eigen::Matrix3Xd& vertices, const Eigen::Matrix3Xi& triangles) {
+  double six_volume = 0.0;
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) {
+    six_volume += vertices.col(triangles(0, t)).dot(vertices.col(triangles(1, t)).cross(vertices.col(triangles(2, t))));
+  }
+  return six_volume / 6.0;
 }
 
 }  // namespace cubespring::test

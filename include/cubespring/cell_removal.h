@@ -27,8 +27,14 @@ struct CellRemoval {
   State state;
   /// The constraints carried over (a fixed or driven node stays so while it remains).
   Constraints constraints;
-  /// Old node n is node new_node[n] of the new model, or -1: it left with the cells.
+  /// Old node n is node new_node[n] of the new model, or -1: it left with the cells. (Where the
+  /// removed cells alone held a node together across split faces, face_split.h, it is one of
+  /// the node's copies now: source_node tells them all.)
   std::vector<int> new_node;
+  /// New node n was old node source_node[n]. (Where the removed cells alone held a node's
+  /// copies apart, the copies are one node again, at their mean weighted by the mass each keeps:
+  /// the first of them.)
+  std::vector<int> source_node;
   /// Old cell c is cell new_cell[c] of the new model, or -1: removed.
   std::vector<int> new_cell;
   int removed_cells = 0;

@@ -46,6 +46,10 @@ class Constraints {
   /// cell_removal.h): node n becomes node new_node[n] of `num_new_nodes`, or is dropped where
   /// that is -1. Errors name a map of the wrong size or an index out of range.
   Result<Constraints> renumbered(const std::vector<int>& new_node, int num_new_nodes) const;
+  /// The same constraints on a body whose node n was node source_node[n] of this one (nodes
+  /// duplicated where faces were split, face_split.h): each node driven as its source was.
+  /// Errors name a source out of range.
+  Result<Constraints> gathered(const std::vector<int>& source_node) const;
   /// Makes a node free again.
   Status release(int node);
 

@@ -40,7 +40,15 @@ struct ExactBendingParameters {
   double twist_factor = 1.0 / 48.0;
 };
 
-/// A body as a set of occupied cells of a regular grid. Cells that touch share nodes.
+/// The face between the cell at grid index `cell` and the one after it along `axis` (0, 1, 2:
+/// x, y, z), the cell at cell + e_axis.
+struct CellFace {
+  Eigen::Vector3i cell{0, 0, 0};
+  int axis = 0;
+};
+
+/// A body as a set of occupied cells of a regular grid. Cells that touch share nodes, except
+/// where split_faces part them.
 struct LatticeDesc {
   Eigen::Vector3d cell_size{0.01, 0.01, 0.01};  ///< (hx, hy, hz) [m], each > 0.
   Eigen::Vector3d origin{0.0, 0.0, 0.0};        ///< Position of grid node (0,0,0) [m].
@@ -52,6 +60,13 @@ struct LatticeDesc {
   /// What the cells make of large strain (cell_law.h): kSprings, the cell model as calibrated
   /// (the default), or kNeoHookean, for soft tissue at large strain.
   CellLaw law = CellLaw::kSprings;
+  /// Faces between two cells of the body that are split (a blade's cut, face_split.h): the cells
+  /// either side no longer hold together there. Around each grid point, the cells that share a
+  /// face not split, or that touch along an edge or at the point with no cell between them, share
+  /// a node; each group of cells the splits part gets a node of its own, a copy at the same place.
+  /// Both cells of each face must be cells of the body; no face twice. Empty (the default): every
+  /// touching cell shares its nodes.
+  std::vector<CellFace> split_faces;
 };
 
 /// The most cells a body may have: its springs (up to 16 a cell) are indexed by int.

@@ -32,5 +32,9 @@ struct MassScaling {
 /// std::invalid_argument for a fraction outside [0, 1], and as max_frequency() does for a body too
 /// large for a sparse matrix. Whatever inertia the model had is replaced.
 MassScaling add_mass_for_time_step(Model& model, double max_added_fraction);
+/// The same from the body's stiffness row sums at rest (stiffness_row_sums(), or for a cut body
+/// stiffness_row_sums_after()), which the call above assembles the stiffness for. Throws
+/// std::invalid_argument as well when `row_sums` has not one entry per node.
+MassScaling add_mass_for_time_step(Model& model, double max_added_fraction, const Eigen::VectorXd& row_sums);
 
 }  // namespace cubespring

@@ -35,6 +35,9 @@ struct Model {
   CellLaw cell_law = CellLaw::kSprings;
   /// Per material: the neo-Hookean cell term's constants (empty for kSprings).
   std::vector<NeoHookeanConstants> law_constants;
+  /// The split faces (LatticeDesc::split_faces), in the order of their cell's grid key and axis.
+  /// Where any is split, nodes may share a grid index: cell_nodes says which copy a cell has.
+  std::vector<CellFace> split_faces;
   Eigen::Vector3d cell_size{0, 0, 0};  ///< (hx, hy, hz) [m]
   Eigen::Vector3d origin{0, 0, 0};     ///< [m]
   /// The materials the arrays below were made from: read-only after build_model() (the masses,
@@ -116,7 +119,8 @@ struct Model {
   int num_cells() const { return static_cast<int>(cell_nodes.size()); }
   double rest_cell_volume() const { return cell_size.prod(); }
   double total_mass() const { return mass.sum(); }
-  /// Index of the node at a grid index, or -1 when no cell uses it.
+  /// Index of the node at a grid index, or -1 when no cell uses it. Where split faces made copies
+  /// of it (split_faces), the first copy: find a cell's own by cell_nodes.
   int node_at(const Eigen::Vector3i& grid_index) const;
 
   /// Nodes whose rest position lies in the closed box [lower, upper] [m].

@@ -64,6 +64,10 @@ inline constexpr double kThickEnough = 0.5;
 /// slack that a thin cell under a probe must not plan on (a drag's force rang on it). Throws as
 /// max_frequency() does.
 Eigen::VectorXd cell_stable_time_steps(const Model& model);
+/// The same from the body's stiffness row sums at rest (stiffness_row_sums(), or for a cut body
+/// stiffness_row_sums_after()), without assembling the stiffness. Throws std::invalid_argument
+/// when `row_sums` has not one entry per node.
+Eigen::VectorXd cell_stable_time_steps(const Model& model, const Eigen::VectorXd& row_sums);
 
 /// The longest step [s] that the cells thinner than kThickEnough allow in the state `positions`
 /// [m]: the least over them of each one's factor (as compressed_step_factor() finds it for the

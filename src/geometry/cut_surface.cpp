@@ -49,8 +49,23 @@ class Cutter {
  public:
   Cutter(const TriangleMesh& surface, const Eigen::Vector3d& origin, const Eigen::Vector3d& cell_size,
          const std::vector<Eigen::Vector3i>& removed)
-      : surface_(surface), origin_(origin), cell_size_(cell_size) {
+      : surface_(surface),
+        origin_(origin),
+        cell_size_(cell_size),
+        input_used_(static_cast<std::size_t>(surface.num_vertices()), 0),
+        on_cut_edge_(static_cast<std::size_t>(surface.num_vertices()), 0) {
     for (const Eigen::Vector3i& cell : removed) removed_.insert({cell.x(), cell.y(), cell.z()});
+    // a box of flags over the removed cells: most triangles ask about cells far from any cut
+    if (removed.empty()) return;
+    removed_lower_ = removed.front();
+    Eigen::Vector3i upper = removed_lower_;
+    for (const Eigen::Vector3i& cell : removed) {
+      removed_lower_ = removed_lower_.cwiseMin(cell);
+      upper = upper.cwiseMax(cell);
+    }
+    removed_extent_ = (upper - removed_lower_).array() + 1;
+    removed_flags_.assign(static_cast<std::size_t>(removed_extent_.cast<long long>().prod()), 0);
+    for (const Eigen::Vector3i& cell : removed) removed_flags_[flag_of(cell.cast<long long>())] = 1;
   }
 
   CutSurface run() {
@@ -84,8 +99,15 @@ class Cutter {
   long long cell_along(int axis, double x) const {
     return static_cast<long long>(std::floor((x - origin_[axis]) / cell_size_[axis] - kPlaneShift[axis]));
   }
+  std::size_t flag_of(const Eigen::Matrix<long long, 3, 1>& cell) const {
+    const Eigen::Matrix<long long, 3, 1> at = cell - removed_lower_.cast<long long>();
+    return static_cast<std::size_t>((at.z() * removed_extent_.y() + at.y()) * removed_extent_.x() + at.x());
+  }
   bool is_removed(long long i, long long j, long long k) const {
-    return removed_.count({static_cast<int>(i), static_cast<int>(j), static_cast<int>(k)}) != 0;
+    const Eigen::Matrix<long long, 3, 1> cell(i, j, k);
+    const Eigen::Matrix<long long, 3, 1> at = cell - removed_lower_.cast<long long>();
+    if ((at.array() < 0).any() || (at.array() >= removed_extent_.cast<long long>().array()).any()) return false;
+    return removed_flags_[flag_of(cell)] != 0;
   }
   Eigen::Vector3d vertex(int v) const { return surface_.vertices.col(v); }
   Point input_vertex(int v) const { return {vertex(v), {0, v, 0, 0}}; }
@@ -135,7 +157,10 @@ class Cutter {
     const std::array<int, 2> edge = common_edge(t, p, q);
     if (edge[0] >= 0) {
       const Point x = edge_point(edge[0], edge[1], id);
-      if (x.key[0] == 1) edge_points_[{std::min(edge[0], edge[1]), std::max(edge[0], edge[1])}].insert(x.key);
+      if (x.key[0] == 1) {
+        edge_points_[{std::min(edge[0], edge[1]), std::max(edge[0], edge[1])}].insert(x.key);
+        on_cut_edge_[static_cast<std::size_t>(edge[0])] = on_cut_edge_[static_cast<std::size_t>(edge[1])] = 1;
+      }
       return x;
     }
     for (const long long a : planes_of(p)) {
@@ -232,11 +257,26 @@ class Cutter {
   // A triangle no removed cell reaches, with the points its clipped neighbours made on its edges
   // (else they would meet it at a T-junction and crack as the tissue deforms).
   void emit_unclipped(int t) {
+    const auto on_cut_edge = [&](int k) {
+      return on_cut_edge_[static_cast<std::size_t>(surface_.triangles(k, t))] &&
+             on_cut_edge_[static_cast<std::size_t>(surface_.triangles((k + 1) % 3, t))];
+    };
+    if (!on_cut_edge(0) && !on_cut_edge(1) && !on_cut_edge(2)) {  // most triangles: as they were
+      std::array<Key, 3> triangle;
+      for (int k = 0; k < 3; ++k) {
+        const Point x = input_vertex(surface_.triangles(k, t));
+        remember(x);
+        triangle[static_cast<std::size_t>(k)] = x.key;
+      }
+      triangles_.push_back(triangle);
+      return;
+    }
     std::vector<Point> polygon;
     bool extra = false;
     for (int k = 0; k < 3; ++k) {
       const int u = surface_.triangles(k, t), w = surface_.triangles((k + 1) % 3, t);
       polygon.push_back(input_vertex(u));
+      if (!on_cut_edge_[static_cast<std::size_t>(u)] || !on_cut_edge_[static_cast<std::size_t>(w)]) continue;
       const auto found = edge_points_.find({std::min(u, w), std::max(u, w)});
       if (found == edge_points_.end()) continue;
       std::vector<Point> along;
@@ -253,15 +293,24 @@ class Cutter {
     }
     if (!extra) {
       triangles_.push_back({polygon[0].key, polygon[1].key, polygon[2].key});
-      for (const Point& x : polygon) positions_.emplace(x.key, x.x);
+      for (const Point& x : polygon) remember(x);
       return;
     }
     emit_polygon(polygon, triangle_normal(t));
   }
 
+  // A point the output uses: an input vertex is flagged, any other kept with its position.
+  void remember(const Point& x) {
+    if (x.key[0] == 0) {
+      input_used_[static_cast<std::size_t>(x.key[1])] = 1;
+    } else {
+      positions_.emplace(x.key, x.x);
+    }
+  }
+
   // A planar polygon (no self-crossing) as triangles by ear clipping, each turning as the polygon.
   void emit_polygon(std::vector<Point> polygon, const Eigen::Vector3d& normal) {
-    for (const Point& x : polygon) positions_.emplace(x.key, x.x);
+    for (const Point& x : polygon) remember(x);
     int drop = 0;
     normal.cwiseAbs().maxCoeff(&drop);
     const int u = (drop + 1) % 3, v = (drop + 2) % 3;
@@ -309,12 +358,18 @@ class Cutter {
     Eigen::Vector3d along_axis = Eigen::Vector3d::Zero();
     along_axis[axis] = 1.0;
     for (int t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t) {
-      std::vector<Point> ends;
+      const std::array<int, 3> corners{surface_.triangles(0, t), surface_.triangles(1, t), surface_.triangles(2, t)};
+      int above = 0;
+      for (const int v : corners) above += surface_.vertices(axis, v) >= c;
+      if (above == 0 || above == 3) continue;  // most triangles: all on one side
+      std::array<Point, 2> ends;
+      int crossings = 0;
       for (int k = 0; k < 3; ++k) {
-        const int p = surface_.triangles(k, t), q = surface_.triangles((k + 1) % 3, t);
-        if ((vertex(p)[axis] >= c) != (vertex(q)[axis] >= c)) ends.push_back(edge_point(p, q, id));
+        const int p = corners[static_cast<std::size_t>(k)], q = corners[static_cast<std::size_t>((k + 1) % 3)];
+        if ((vertex(p)[axis] >= c) != (vertex(q)[axis] >= c) && crossings < 2)
+          ends[static_cast<std::size_t>(crossings++)] = edge_point(p, q, id);
       }
-      if (ends.size() != 2 || ends[0].key == ends[1].key) continue;
+      if (crossings != 2 || ends[0].key == ends[1].key) continue;
       // the inside lies to the left of axis x normal
       if ((ends[1].x - ends[0].x).dot(along_axis.cross(triangle_normal(t))) < 0.0) std::swap(ends[0], ends[1]);
       segments.push_back({ends[0], ends[1], t});
@@ -501,21 +556,34 @@ class Cutter {
   CutSurface assemble(int cap_triangles) {
     CutSurface cut;
     cut.cap_triangles = cap_triangles;
-    std::map<Key, int> index;
-    std::set<Key> used;  // sorted: input vertices (kind 0) first, in their order
-    for (const auto& triangle : triangles_) used.insert(triangle.begin(), triangle.end());
-    cut.mesh.vertices.resize(3, static_cast<Eigen::Index>(used.size()));
-    for (const Key& key : used) {
-      const int v = static_cast<int>(index.size());
-      index[key] = v;
-      cut.mesh.vertices.col(v) = positions_.at(key);
+    // the input vertices used, in their order, then the cut's points in the order of their keys
+    std::vector<int> input_index(input_used_.size(), -1);
+    std::set<Key> used;
+    for (const auto& triangle : triangles_) {
+      for (const Key& key : triangle) {
+        if (key[0] != 0) used.insert(key);
+      }
+    }
+    const auto count = static_cast<Eigen::Index>(std::count(input_used_.begin(), input_used_.end(), char{1}));
+    cut.mesh.vertices.resize(3, count + static_cast<Eigen::Index>(used.size()));
+    int next = 0;
+    const auto add = [&](const Key& key, const Eigen::Vector3d& x) {
+      cut.mesh.vertices.col(next) = x;
       cut.vertex_source.push_back(key[0] == 0 ? static_cast<int>(key[1]) : -1);
       cut.vertex_keys.push_back(key);
+      return next++;
+    };
+    for (std::size_t v = 0; v < input_used_.size(); ++v) {
+      if (input_used_[v]) input_index[v] = add({0, static_cast<long long>(v), 0, 0}, vertex(static_cast<int>(v)));
     }
+    std::map<Key, int> index;
+    for (const Key& key : used) index[key] = add(key, positions_.at(key));
     cut.mesh.triangles.resize(3, static_cast<Eigen::Index>(triangles_.size()));
     for (std::size_t t = 0; t < triangles_.size(); ++t) {
       for (int k = 0; k < 3; ++k) {
-        cut.mesh.triangles(k, static_cast<Eigen::Index>(t)) = index.at(triangles_[t][static_cast<std::size_t>(k)]);
+        const Key& key = triangles_[t][static_cast<std::size_t>(k)];
+        cut.mesh.triangles(k, static_cast<Eigen::Index>(t)) =
+            key[0] == 0 ? input_index[static_cast<std::size_t>(key[1])] : index.at(key);
       }
     }
     return cut;
@@ -523,10 +591,14 @@ class Cutter {
 
   const TriangleMesh& surface_;
   Eigen::Vector3d origin_, cell_size_;
-  std::set<std::array<int, 3>> removed_;
-  std::map<std::array<int, 2>, std::set<Key>> edge_points_;                    // the cut's points on each input edge
+  std::set<std::array<int, 3>> removed_;  // in order, for the caps
+  Eigen::Vector3i removed_lower_{0, 0, 0}, removed_extent_{0, 0, 0};
+  std::vector<char> removed_flags_;                          // over the removed cells' box, x fastest
+  std::vector<char> input_used_;                             // input vertices the output uses
+  std::vector<char> on_cut_edge_;                            // input vertices at an end of an edge the cut split
+  std::map<std::array<int, 2>, std::set<Key>> edge_points_;  // the cut's points on each input edge
   std::map<std::pair<long long, int>, std::vector<SectionSegment>> sections_;  // by plane and part
-  std::map<Key, Eigen::Vector3d> positions_;  // each point's position, as first computed
+  std::map<Key, Eigen::Vector3d> positions_;  // each point the cut made: its position, as first computed
   std::vector<std::array<Key, 3>> triangles_;
   long long degenerate_ = 0;
 };

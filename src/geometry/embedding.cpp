@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 #include <unordered_map>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -38,11 +39,48 @@ struct CellBox {
   }
 };
 
+// The model's cell at a grid index, or -1: a table over the cells' box when it is not much larger
+// than the cells (a lattice voxelized from an organ), else a hash (a few cells far apart). Every
+// vertex of a surface asks, most of them outside the lattice many times over (nearest_cell).
+class CellLookup {
+ public:
+  CellLookup(const Model& model, const CellBox& box) : box_(box), extent_((box.high - box.low).array() + 1) {
+    const double volume = extent_.cast<double>().prod();
+    if (volume <= kMaxTableCellsPerCell * model.num_cells()) {
+      table_.assign(static_cast<std::size_t>(volume), -1);
+      for (int c = 0; c < model.num_cells(); ++c) table_[slot(model.cell_grid_index[static_cast<std::size_t>(c)])] = c;
+    } else {
+      for (int c = 0; c < model.num_cells(); ++c)
+        hash_.emplace(cell_key(model.cell_grid_index[static_cast<std::size_t>(c)]), c);
+    }
+  }
+  int find(const Eigen::Vector3i& cell) const {
+    if (!box_.contains(cell)) return -1;
+    if (!table_.empty()) return table_[slot(cell)];
+    const auto found = hash_.find(cell_key(cell));
+    return found == hash_.end() ? -1 : found->second;
+  }
+
+ private:
+  static constexpr double kMaxTableCellsPerCell = 64.0;
+  std::size_t slot(const Eigen::Vector3i& cell) const {
+    const Eigen::Vector3i at = cell - box_.low;
+    return (static_cast<std::size_t>(at.z()) * static_cast<std::size_t>(extent_.y()) +
+            static_cast<std::size_t>(at.y())) *
+               static_cast<std::size_t>(extent_.x()) +
+           static_cast<std::size_t>(at.x());
+  }
+  CellBox box_;
+  Eigen::Vector3i extent_;
+  std::vector<int> table_;
+  std::unordered_map<std::int64_t, int> hash_;
+};
+
 // The occupied cell nearest to a point given in grid units, by rings (the shells of cubes) of
 // growing radius around the grid cell that contains it; stops once no farther ring can hold a
 // nearer cell.
-int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const CellBox& box, const Eigen::Vector3d& local,
-                 const Eigen::Vector3d& h, int max_radius) {
+int nearest_cell(const CellLookup& cell_of, const CellBox& box, const Eigen::Vector3d& local, const Eigen::Vector3d& h,
+                 int max_radius) {
   const Eigen::Vector3i home = local.array().floor().cast<int>();
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
@@ -57,12 +95,12 @@ int nearest_cell(const std::unordered_map<std::int64_t, int>& cell_of, const Cel
         for (int dx = -radius; dx <= radius; dx += dx_step) {
           const Eigen::Vector3i cell = home + Eigen::Vector3i(dx, dy, dz);
           if (!box.contains(cell)) continue;
-          const auto found = cell_of.find(cell_key(cell));
-          if (found == cell_of.end()) continue;
+          const int found = cell_of.find(cell);
+          if (found < 0) continue;
           const double distance = squared_distance_to_cell(local, cell, h);
           if (distance < best_distance) {  // ties keep the first in a fixed order: deterministic
             best_distance = distance;
-            best = found->second;
+            best = found;
           }
         }
       }
@@ -83,13 +121,12 @@ double trilinear_weight(int corner, const Eigen::Vector3d& u) {
 Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
   if (Status status = validate(visual); !status) return status;
   if (model.num_cells() == 0) return Status::error("cannot embed a mesh in a model with no cells");
-  std::unordered_map<std::int64_t, int> cell_of;
   CellBox box{model.cell_grid_index.front(), model.cell_grid_index.front()};
   for (int c = 0; c < model.num_cells(); ++c) {
-    cell_of.emplace(cell_key(model.cell_grid_index[static_cast<std::size_t>(c)]), c);
     box.low = box.low.cwiseMin(model.cell_grid_index[static_cast<std::size_t>(c)]);
     box.high = box.high.cwiseMax(model.cell_grid_index[static_cast<std::size_t>(c)]);
   }
+  const CellLookup cell_of(model, box);
   // a vertex bound to a cell farther than the lattice is long would move by extrapolation, not
   // with the tissue (and finding its cell would take long): most likely another unit or place
   const int longest = (box.high - box.low).maxCoeff() + 1;
@@ -110,8 +147,7 @@ Result<Embedding> embed_mesh(const Model& model, const TriangleMesh& visual) {
       return Status::error(message.str());
     }
     const Eigen::Vector3i home = home_cell.cast<int>();
-    const auto found = box.contains(home) ? cell_of.find(cell_key(home)) : cell_of.end();
-    int cell = found != cell_of.end() ? found->second : -1;
+    int cell = cell_of.find(home);
     if (cell < 0) {
       const Eigen::Vector3i reach = (home - box.low).cwiseAbs().cwiseMax((home - box.high).cwiseAbs());
       cell = nearest_cell(cell_of, box, local, model.cell_size, reach.maxCoeff() + 1);

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <set>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
@@ -22,6 +23,9 @@ std::int64_t grid_key(const Eigen::Vector3i& index) {
 LatticeSurface lattice_boundary_surface(const Model& model) {
   std::unordered_set<std::int64_t> occupied;
   for (const Eigen::Vector3i& cell : model.cell_grid_index) occupied.insert(grid_key(cell));
+  // a split face bounds both its cells (each side has its own copies of the face's nodes)
+  std::set<std::pair<std::int64_t, int>> split;
+  for (const CellFace& face : model.split_faces) split.emplace(grid_key(face.cell), face.axis);
   LatticeSurface surface;
   std::unordered_map<int, int> vertex_of_node;
   std::vector<std::array<int, 3>> triangles;
@@ -38,7 +42,8 @@ LatticeSurface lattice_boundary_surface(const Model& model) {
       for (int side = 0; side < 2; ++side) {
         Eigen::Vector3i neighbour = model.cell_grid_index[static_cast<std::size_t>(c)];
         neighbour[axis] += side == 1 ? 1 : -1;
-        if (occupied.count(grid_key(neighbour)) != 0) continue;
+        const Eigen::Vector3i& lower = side == 1 ? model.cell_grid_index[static_cast<std::size_t>(c)] : neighbour;
+        if (occupied.count(grid_key(neighbour)) != 0 && split.count({grid_key(lower), axis}) == 0) continue;
         // the face's corners in the order (0,0), (1,0), (1,1), (0,1) of the next two axes turn
         // counter-clockwise about +axis; the low side is turned the other way
         const int b = (axis + 1) % 3;

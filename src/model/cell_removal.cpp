@@ -3,36 +3,18 @@
 #include "cubespring/cell_removal.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
+#include <map>
 #include <numeric>
+#include <set>
 #include <string>
 #include <utility>
 
+#include "model/pieces.h"
+
 namespace cubespring {
 namespace {
-
-// Pieces that cells sharing a node make: union-find over the nodes, each cell joining its corners.
-int count_pieces(const Model& model) {
-  std::vector<int> parent(static_cast<std::size_t>(model.num_nodes()));
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](int n) {
-    while (parent[static_cast<std::size_t>(n)] != n) {
-      int& up = parent[static_cast<std::size_t>(n)];
-      up = parent[static_cast<std::size_t>(up)];  // halve the path as we go
-      n = up;
-    }
-    return n;
-  };
-  for (const auto& corners : model.cell_nodes) {
-    for (int corner = 1; corner < kCornersPerCell; ++corner) {
-      const int a = root(corners[0]), b = root(corners[static_cast<std::size_t>(corner)]);
-      if (a != b) parent[static_cast<std::size_t>(b)] = a;
-    }
-  }
-  int pieces = 0;
-  for (int n = 0; n < model.num_nodes(); ++n) pieces += root(n) == n;
-  return pieces;
-}
 
 Status check_sizes(const Model& model, const State& state, const Constraints& constraints) {
   const Eigen::Index nodes = model.num_nodes();
@@ -72,6 +54,20 @@ Result<CellRemoval> remove_cells(const Model& model, const State& state, const C
   LatticeDesc desc = lattice_desc(model);
   desc.cells.clear();
   desc.cell_material.clear();
+  // a split face goes with either of its cells
+  std::set<std::array<int, 3>> gone;
+  for (int c = 0; c < num_cells; ++c) {
+    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
+    if (removed[static_cast<std::size_t>(c)]) gone.insert({g.x(), g.y(), g.z()});
+  }
+  desc.split_faces.clear();
+  for (const CellFace& face : model.split_faces) {
+    Eigen::Vector3i next = face.cell;
+    next[face.axis] += 1;
+    if (gone.count({face.cell.x(), face.cell.y(), face.cell.z()}) == 0 &&
+        gone.count({next.x(), next.y(), next.z()}) == 0)
+      desc.split_faces.push_back(face);
+  }
   const double volume = model.rest_cell_volume();
   for (int c = 0; c < num_cells; ++c) {
     const std::size_t ci = static_cast<std::size_t>(c);
@@ -92,28 +88,62 @@ Result<CellRemoval> remove_cells(const Model& model, const State& state, const C
   removal.model = std::move(rebuilt).value();
   const Model& after = removal.model;
 
-  removal.new_node.assign(static_cast<std::size_t>(model.num_nodes()), -1);
-  removal.state.positions.resize(3, after.num_nodes());
-  removal.state.velocities.resize(3, after.num_nodes());
-  removal.state.time = state.time;
-  for (int n = 0; n < after.num_nodes(); ++n) {
-    const int old = model.node_at(after.node_grid_index[static_cast<std::size_t>(n)]);
-    removal.new_node[static_cast<std::size_t>(old)] = n;
-    removal.state.positions.col(n) = state.positions.col(old);
-    removal.state.velocities.col(n) = state.velocities.col(old);
-  }
-  // a remaining cell's corners are nodes of both models: find its new index from its first corner
+  // the remaining cells are the same cells: each keeps its corners' nodes (a node's copies, where
+  // split faces made them, are told apart by the cells that have them, not by their grid index)
   removal.new_cell.assign(static_cast<std::size_t>(num_cells), -1);
-  std::vector<int> cell_at_first_corner(static_cast<std::size_t>(after.num_nodes()), -1);
-  for (int c = 0; c < after.num_cells(); ++c)
-    cell_at_first_corner[static_cast<std::size_t>(after.cell_nodes[static_cast<std::size_t>(c)][0])] = c;
+  std::map<std::array<int, 3>, int> new_cell_at;
+  for (int c = 0; c < after.num_cells(); ++c) {
+    const Eigen::Vector3i& g = after.cell_grid_index[static_cast<std::size_t>(c)];
+    new_cell_at.emplace(std::array<int, 3>{g.x(), g.y(), g.z()}, c);
+  }
+  removal.new_node.assign(static_cast<std::size_t>(model.num_nodes()), -1);
+  // (new node, old node): the mass of the cells whose corner is one and was the other [kg]
+  std::map<std::pair<int, int>, double> sources;
   for (int c = 0; c < num_cells; ++c) {
     if (removed[static_cast<std::size_t>(c)]) continue;
-    const int first = removal.new_node[static_cast<std::size_t>(model.cell_nodes[static_cast<std::size_t>(c)][0])];
-    removal.new_cell[static_cast<std::size_t>(c)] = cell_at_first_corner[static_cast<std::size_t>(first)];
+    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
+    const int to = new_cell_at.at({g.x(), g.y(), g.z()});
+    removal.new_cell[static_cast<std::size_t>(c)] = to;
+    for (std::size_t k = 0; k < kCornersPerCell; ++k) {
+      const int old = model.cell_nodes[static_cast<std::size_t>(c)][k];
+      const int node = after.cell_nodes[static_cast<std::size_t>(to)][k];
+      removal.new_node[static_cast<std::size_t>(old)] = node;
+      sources[{node, old}] +=
+          model.materials[static_cast<std::size_t>(model.cell_material[static_cast<std::size_t>(c)])].density * volume /
+          kCornersPerCell;
+    }
+  }
+  // each new node from its old one; where the removed cells alone held a node's copies apart they
+  // are one node again, at their mean place and velocity weighted by the mass of the cells each
+  // brings (so that momentum is kept), and where they alone held a node together its copies start
+  // alike
+  removal.source_node.assign(static_cast<std::size_t>(after.num_nodes()), -1);
+  removal.state.positions.setZero(3, after.num_nodes());
+  removal.state.velocities.setZero(3, after.num_nodes());
+  removal.state.time = state.time;
+  std::vector<double> kept_mass(static_cast<std::size_t>(after.num_nodes()), 0.0);
+  std::vector<int> count(static_cast<std::size_t>(after.num_nodes()), 0);
+  for (const auto& [ends, mass] : sources) ++count[static_cast<std::size_t>(ends.first)];
+  for (const auto& [ends, mass] : sources) {
+    const auto [node, old] = ends;
+    if (removal.source_node[static_cast<std::size_t>(node)] < 0)
+      removal.source_node[static_cast<std::size_t>(node)] = old;
+    if (count[static_cast<std::size_t>(node)] == 1) {
+      removal.state.positions.col(node) = state.positions.col(old);
+      removal.state.velocities.col(node) = state.velocities.col(old);
+      continue;
+    }
+    removal.state.positions.col(node) += mass * state.positions.col(old);
+    removal.state.velocities.col(node) += mass * state.velocities.col(old);
+    kept_mass[static_cast<std::size_t>(node)] += mass;
+  }
+  for (int n = 0; n < after.num_nodes(); ++n) {
+    if (count[static_cast<std::size_t>(n)] < 2) continue;
+    removal.state.positions.col(n) /= kept_mass[static_cast<std::size_t>(n)];
+    removal.state.velocities.col(n) /= kept_mass[static_cast<std::size_t>(n)];
   }
 
-  Result<Constraints> carried = constraints.renumbered(removal.new_node, after.num_nodes());
+  Result<Constraints> carried = constraints.gathered(removal.source_node);
   if (!carried) return carried.status();
   removal.constraints = std::move(carried).value();
   removal.pieces = count_pieces(after);

@@ -128,6 +128,22 @@ Result<Constraints> Constraints::renumbered(const std::vector<int>& new_node, in
   return carried;
 }
 
+Result<Constraints> Constraints::gathered(const std::vector<int>& source_node) const {
+  Constraints carried;
+  carried.driven_.assign(source_node.size(), 0);
+  carried.target_.setZero(3, static_cast<Eigen::Index>(source_node.size()));
+  for (std::size_t n = 0; n < source_node.size(); ++n) {
+    const int from = source_node[n];
+    if (from < 0 || from >= num_nodes()) {
+      return Status::error("node " + std::to_string(n) + " comes from node " + std::to_string(from) + ", outside the " +
+                           std::to_string(num_nodes()) + " constrained nodes");
+    }
+    carried.driven_[n] = driven_[static_cast<std::size_t>(from)];
+    carried.target_.col(static_cast<Eigen::Index>(n)) = target_.col(from);
+  }
+  return carried;
+}
+
 int Constraints::num_driven() const {
   return static_cast<int>(driven_.size() - std::count(driven_.begin(), driven_.end(), std::uint8_t{0}));
 }

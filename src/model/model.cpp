@@ -5,12 +5,16 @@
 #include "cubespring/model.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
+#include <numeric>
 #include <sstream>
+#include <utility>
 
 #include "model/cell_geometry.h"
 #include "model/neo_hookean_cell.h"
+#include "model/node_copies.h"
 
 namespace cubespring {
 namespace {
@@ -96,6 +100,41 @@ Status check_desc(const LatticeDesc& desc) {
   return {};
 }
 
+// Sorts records (each with a node0 in [0, num_nodes)) by `less`, which orders by node0 first: a
+// counting sort by node0, then each node's few records sorted on their own. The same order as
+// std::sort for a `less` under which no two records are equal, in linear time (the full sort of
+// a body's edges took a third of build_model(), which a cut runs again).
+template <typename Record, typename Less>
+void sort_by_first_node(std::vector<Record>& records, int num_nodes, Less less) {
+  std::vector<int> first(static_cast<std::size_t>(num_nodes) + 1, 0);
+  for (const Record& record : records) ++first[static_cast<std::size_t>(record.node0) + 1];
+  for (std::size_t n = 0; n < static_cast<std::size_t>(num_nodes); ++n) first[n + 1] += first[n];
+  std::vector<Record> sorted(records.size());
+  std::vector<int> fill(first.begin(), first.end() - 1);
+  for (const Record& record : records)
+    sorted[static_cast<std::size_t>(fill[static_cast<std::size_t>(record.node0)]++)] = record;
+  for (std::size_t n = 0; n < static_cast<std::size_t>(num_nodes); ++n)
+    std::sort(sorted.begin() + first[n], sorted.begin() + first[n + 1], less);
+  records = std::move(sorted);
+}
+
+// The sorted lists merged into one sorted list, pairwise (as many passes as the log of their count).
+template <std::size_t Count>
+std::vector<std::int64_t> merged(const std::array<std::vector<std::int64_t>, Count>& lists) {
+  std::vector<std::vector<std::int64_t>> round(lists.begin(), lists.end());
+  while (round.size() > 1) {
+    std::vector<std::vector<std::int64_t>> next;
+    for (std::size_t i = 0; i + 1 < round.size(); i += 2) {
+      std::vector<std::int64_t> both(round[i].size() + round[i + 1].size());
+      std::merge(round[i].begin(), round[i].end(), round[i + 1].begin(), round[i + 1].end(), both.begin());
+      next.push_back(std::move(both));
+    }
+    if (round.size() % 2 == 1) next.push_back(std::move(round.back()));
+    round = std::move(next);
+  }
+  return round.front();
+}
+
 struct EdgeRecord {
   int node0, node1;
   int cell, slot;  // slot: the edge's place in the cell's 12, axis * 4 + rank of its lower corner
@@ -122,6 +161,7 @@ LatticeDesc lattice_desc(const Model& model) {
   desc.model = model.cell_model;
   desc.exact_bending = model.exact_bending;
   desc.law = model.cell_law;
+  desc.split_faces = model.split_faces;
   return desc;
 }
 
@@ -172,10 +212,14 @@ Result<Model> build_model(const LatticeDesc& desc) {
   const bool springs_law = desc.law == CellLaw::kSprings;
 
   // cells in grid order, duplicates refused
+  std::vector<std::int64_t> cell_keys(desc.cells.size());
+  for (std::size_t c = 0; c < cell_keys.size(); ++c) cell_keys[c] = grid_key(desc.cells[c], major_axis);
   std::vector<int> cell_order(desc.cells.size());
   for (std::size_t c = 0; c < cell_order.size(); ++c) cell_order[c] = static_cast<int>(c);
-  std::sort(cell_order.begin(), cell_order.end(),
-            [&](int a, int b) { return grid_key(desc.cells[a], major_axis) < grid_key(desc.cells[b], major_axis); });
+  // a model's own cells (lattice_desc(), a cut) come in order already
+  if (!std::is_sorted(cell_keys.begin(), cell_keys.end())) {
+    std::sort(cell_order.begin(), cell_order.end(), [&](int a, int b) { return cell_keys[a] < cell_keys[b]; });
+  }
   for (std::size_t c = 1; c < cell_order.size(); ++c) {
     if (desc.cells[cell_order[c]] == desc.cells[cell_order[c - 1]]) {
       std::ostringstream message;
@@ -184,16 +228,49 @@ Result<Model> build_model(const LatticeDesc& desc) {
     }
   }
 
-  // nodes: the sorted set of every cell corner
-  std::vector<std::int64_t>& keys = model.sorted_node_keys_;
-  keys.reserve(cell_order.size() * 2);
-  for (const Eigen::Vector3i& cell : desc.cells) {
-    for (int corner = 0; corner < kCornersPerCell; ++corner)
-      keys.push_back(grid_key(cell + corner_offset(corner), major_axis));
+  // nodes: the sorted set of every cell corner. Along the cells in grid order the key of corner
+  // o grows (it is the cell's key plus o's), so the 8 corners' keys are 8 sorted lists to merge
+  std::array<std::vector<std::int64_t>, kCornersPerCell> corner_keys;
+  for (int corner = 0; corner < kCornersPerCell; ++corner) {
+    std::vector<std::int64_t>& list = corner_keys[static_cast<std::size_t>(corner)];
+    list.resize(cell_order.size());
+    for (std::size_t c = 0; c < cell_order.size(); ++c)
+      list[c] = grid_key(desc.cells[cell_order[c]] + corner_offset(corner), major_axis);
   }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  const int num_nodes = static_cast<int>(keys.size());
+  std::vector<std::int64_t> points = merged(corner_keys);
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+
+  // a point whose node split faces part has copies of it, one after another (node_copies.h); a
+  // cell's corner there takes its group's copy
+  std::vector<int> first_node(points.size() + 1);  // of each point
+  std::iota(first_node.begin(), first_node.end(), 0);
+  std::array<std::vector<int>, kCornersPerCell> corner_copy;
+  if (!desc.split_faces.empty()) {
+    std::vector<Eigen::Vector3i> ordered(cell_order.size());
+    for (std::size_t c = 0; c < ordered.size(); ++c) ordered[c] = desc.cells[cell_order[c]];
+    Result<std::vector<PointCopies>> copies = split_point_copies(ordered, desc.split_faces);
+    if (!copies) return copies.status();
+    std::vector<int> count(points.size(), 1);
+    for (auto& list : corner_copy) list.assign(cell_order.size(), 0);
+    for (const PointCopies& at : *copies) {
+      const auto point = std::lower_bound(points.begin(), points.end(), grid_key(at.point, major_axis));
+      count[static_cast<std::size_t>(point - points.begin())] = at.count;
+      for (std::size_t k = 0; k < corner_copy.size(); ++k) {
+        if (at.cell[k] >= 0) corner_copy[k][static_cast<std::size_t>(at.cell[k])] = at.copy[k];
+      }
+    }
+    for (std::size_t u = 0; u < points.size(); ++u) first_node[u + 1] = first_node[u] + count[u];
+    model.split_faces = desc.split_faces;
+    std::sort(model.split_faces.begin(), model.split_faces.end(), [&](const CellFace& a, const CellFace& b) {
+      const std::int64_t ka = grid_key(a.cell, major_axis), kb = grid_key(b.cell, major_axis);
+      return ka != kb ? ka < kb : a.axis < b.axis;
+    });
+  }
+  const int num_nodes = first_node.back();
+  std::vector<std::int64_t>& keys = model.sorted_node_keys_;  // one a node: a point's copies alike
+  keys.resize(static_cast<std::size_t>(num_nodes));
+  for (std::size_t u = 0; u < points.size(); ++u)
+    std::fill(keys.begin() + first_node[u], keys.begin() + first_node[u + 1], points[u]);
   model.rest_positions.resize(3, num_nodes);
   model.node_grid_index.resize(num_nodes);
   for (int n = 0; n < num_nodes; ++n) {
@@ -203,6 +280,17 @@ Result<Model> build_model(const LatticeDesc& desc) {
   }
   model.mass = Eigen::VectorXd::Zero(num_nodes);
   model.mass_damping = Eigen::VectorXd::Zero(num_nodes);
+
+  // each corner's node for every cell: one walk over the points along each sorted list
+  std::array<std::vector<int>, kCornersPerCell> corner_node;
+  for (std::size_t corner = 0; corner < corner_node.size(); ++corner) {
+    corner_node[corner].resize(cell_order.size());
+    std::size_t at = 0;
+    for (std::size_t c = 0; c < cell_order.size(); ++c) {
+      while (points[at] < corner_keys[corner][c]) ++at;
+      corner_node[corner][c] = first_node[at] + (corner_copy[corner].empty() ? 0 : corner_copy[corner][c]);
+    }
+  }
 
   // cells: corners, material, correction, lumped mass; edges collected for merging
   const int num_cells = static_cast<int>(cell_order.size());
@@ -229,7 +317,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.cell_twist_stiffness[c] = calibration.twist_stiffness;
     model.has_twist |= calibration.twist_stiffness > 0.0;
     for (int corner = 0; corner < kCornersPerCell; ++corner) {
-      const int node = model.node_at(desc.cells[source] + corner_offset(corner));
+      const int node = corner_node[static_cast<std::size_t>(corner)][static_cast<std::size_t>(c)];
       model.cell_nodes[c][corner] = node;
       model.mass[node] += material.density * volume / kCornersPerCell;
       model.mass_damping[node] += material.mass_damping * material.density * volume / kCornersPerCell;
@@ -247,7 +335,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   }
 
   // springs: merged edges plus diagonals, sorted by (first node, second node) for streaming
-  std::sort(edges.begin(), edges.end(), [](const EdgeRecord& a, const EdgeRecord& b) {
+  sort_by_first_node(edges, num_nodes, [](const EdgeRecord& a, const EdgeRecord& b) {
     return a.node0 != b.node0 ? a.node0 < b.node0 : (a.node1 != b.node1 ? a.node1 < b.node1 : a.cell < b.cell);
   });
   struct SpringRecord {
@@ -280,7 +368,8 @@ Result<Model> build_model(const LatticeDesc& desc) {
                          material.stiffness_damping * calibration.diagonal_stiffness, 0, 0});
     }
   }
-  std::sort(springs.begin(), springs.end(), [](const SpringRecord& a, const SpringRecord& b) {
+  // no two springs join the same nodes: an edge is merged once, a diagonal spans one cell
+  sort_by_first_node(springs, num_nodes, [](const SpringRecord& a, const SpringRecord& b) {
     return a.node0 != b.node0 ? a.node0 < b.node0 : a.node1 < b.node1;
   });
 
@@ -290,6 +379,7 @@ Result<Model> build_model(const LatticeDesc& desc) {
   model.spring_stiffness.resize(num_springs);
   model.spring_damping.resize(num_springs);
   model.spring_cell_offset.assign(num_springs + 1, 0);
+  model.spring_cell_tension.reserve(edges.size());
   for (int s = 0; s < num_springs; ++s) {
     const SpringRecord& spring = springs[s];
     model.spring_nodes[s] = {spring.node0, spring.node1};
@@ -305,18 +395,19 @@ Result<Model> build_model(const LatticeDesc& desc) {
     model.spring_cell_offset[s + 1] = static_cast<int>(model.spring_cell_tension.size());
   }
 
-  // diagonals of each cell, found by their end nodes
+  model.node_first_spring.assign(num_nodes + 1, 0);
+  for (const auto& ends : model.spring_nodes) ++model.node_first_spring[ends[0] + 1];
+  for (int n = 0; n < num_nodes; ++n) model.node_first_spring[n + 1] += model.node_first_spring[n];
+  // diagonals of each cell, found by their end nodes among the springs of the first
   for (int c = 0; c < num_cells; ++c) {
     for (int corner = 0; corner < 4; ++corner) {
       const std::array<int, 2> ends = diagonal_ends(c, corner);
       const auto first = model.spring_nodes.begin();
-      const auto it = std::lower_bound(first, model.spring_nodes.end(), ends);
+      const auto it = std::lower_bound(first + model.node_first_spring[ends[0]],
+                                       first + model.node_first_spring[ends[0] + 1], ends);
       model.cell_diagonals[c][corner] = static_cast<int>(it - first);
     }
   }
-  model.node_first_spring.assign(num_nodes + 1, 0);
-  for (const auto& ends : model.spring_nodes) ++model.node_first_spring[ends[0] + 1];
-  for (int n = 0; n < num_nodes; ++n) model.node_first_spring[n + 1] += model.node_first_spring[n];
   for (const Material& material : desc.materials) {
     model.has_stiffness_damping |= material.stiffness_damping > 0.0;
     model.has_mass_damping |= material.mass_damping > 0.0;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cubespring/stiffness_row_sums.h"
 #include "solve/gershgorin.h"
 
 namespace cubespring {
@@ -21,7 +22,8 @@ namespace {
 double lowest_affordable_bound(const Eigen::VectorXd& row_sums, const Eigen::VectorXd& mass, double budget) {
   std::vector<int> order(static_cast<std::size_t>(mass.size()));
   std::iota(order.begin(), order.end(), 0);
-  const auto bound = [&](int n) { return row_sums[n] / mass[n]; };
+  const Eigen::VectorXd bounds = row_sums.cwiseQuotient(mass);  // divided once, not in each comparison
+  const auto bound = [&](int n) { return bounds[n]; };
   std::sort(order.begin(), order.end(), [&](int a, int b) { return bound(a) > bound(b); });
   double sum_r = 0.0, sum_m = 0.0;
   for (std::size_t k = 0; k < order.size(); ++k) {
@@ -37,14 +39,21 @@ double lowest_affordable_bound(const Eigen::VectorXd& row_sums, const Eigen::Vec
 }  // namespace
 
 MassScaling add_mass_for_time_step(Model& model, double max_added_fraction) {
+  return add_mass_for_time_step(model, max_added_fraction, stiffness_row_sums(model));
+}
+
+MassScaling add_mass_for_time_step(Model& model, double max_added_fraction, const Eigen::VectorXd& row_sums) {
   if (!(max_added_fraction >= 0.0 && max_added_fraction <= 1.0)) {
     throw std::invalid_argument("add_mass_for_time_step: the added mass fraction " +
                                 std::to_string(max_added_fraction) + " must be in [0, 1]");
   }
+  if (row_sums.size() != model.num_nodes()) {
+    throw std::invalid_argument("add_mass_for_time_step: " + std::to_string(row_sums.size()) +
+                                " row sums for a body of " + std::to_string(model.num_nodes()) + " nodes");
+  }
   model.inertial_mass.resize(0);
-  // one assembly gives the bound before, the target and the bound after (max_stable_time_step()'s
-  // Gershgorin bound, from the same row sums)
-  const Eigen::VectorXd row_sums = node_row_sums(model);
+  // one set of row sums gives the bound before, the target and the bound after
+  // (max_stable_time_step()'s Gershgorin bound)
   const auto stable_step = [&](const Eigen::VectorXd& inertia) {
     return stable_step_for_frequency(model, std::sqrt(gershgorin_bound(row_sums, inertia)));
   };

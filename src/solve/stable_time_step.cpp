@@ -6,30 +6,18 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
 
 #include "cubespring/stiffness.h"
+#include "cubespring/stiffness_row_sums.h"
 #include "solve/gershgorin.h"
 
 namespace cubespring {
 namespace {
-
-SparseMatrix rest_stiffness(const Model& model) {
-  return StiffnessAssembler(model).assemble_once(model, model.rest_positions, StiffnessKind::kPositiveSemiDefinite, 1.0,
-                                                 0.0);
-}
-
-Eigen::VectorXd node_row_sums(const SparseMatrix& stiffness) {
-  Eigen::VectorXd sums = Eigen::VectorXd::Zero(stiffness.rows() / 3);
-  for (int row = 0; row < stiffness.rows(); ++row) {
-    double sum = 0.0;
-    for (SparseMatrix::InnerIterator it(stiffness, row); it; ++it) sum += std::abs(it.value());
-    sums[row / 3] = std::max(sums[row / 3], sum);
-  }
-  return sums;
-}
 
 // Largest eigenvalue of A = M^-1/2 K M^-1/2 by Lanczos without reorthogonalisation (only the
 // extreme Ritz value is wanted, and it converges first). Every 10 steps, the top Ritz value and its
@@ -78,8 +66,6 @@ double lanczos_largest_eigenvalue(const SparseMatrix& stiffness, const Eigen::Ve
 }
 
 }  // namespace
-
-Eigen::VectorXd node_row_sums(const Model& model) { return node_row_sums(rest_stiffness(model)); }
 
 double gershgorin_bound(const Eigen::VectorXd& row_sums, const Eigen::VectorXd& inertia) {
   double bound = 0.0;
@@ -144,7 +130,14 @@ void cap_at_pure_tissue(const Model& model, Eigen::VectorXd& steps) {
 }  // namespace
 
 Eigen::VectorXd cell_stable_time_steps(const Model& model) {
-  const Eigen::VectorXd row_sums = node_row_sums(model);
+  return cell_stable_time_steps(model, stiffness_row_sums(model));
+}
+
+Eigen::VectorXd cell_stable_time_steps(const Model& model, const Eigen::VectorXd& row_sums) {
+  if (row_sums.size() != model.num_nodes()) {
+    throw std::invalid_argument("cell_stable_time_steps: " + std::to_string(row_sums.size()) +
+                                " row sums for a body of " + std::to_string(model.num_nodes()) + " nodes");
+  }
   const auto& cells = model.cell_nodes;
   // the largest bound of each cell's nodes, then of the nodes of each cell's cells, then of the
   // cells around each cell (those that share a node with it)

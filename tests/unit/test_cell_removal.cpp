@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -15,7 +17,10 @@
 #include "cubespring/cell_removal.h"
 #include "cubespring/integrator.h"
 #include "cubespring/lattice_surface.h"
+#include "cubespring/mass_scaling.h"
 #include "cubespring/model.h"
+#include "cubespring/stable_time_step.h"
+#include "cubespring/stiffness_row_sums.h"
 #include "test_support.h"
 
 namespace cubespring {
@@ -69,15 +74,9 @@ double cells_mass(const Model& model) {
 
 Eigen::Vector3d momentum(const Model& model, const State& state) { return state.velocities * model.mass; }
 
-// The volume the surface encloses at rest, by the divergence theorem [m^3].
+// The volume the surface encloses at rest [m^3].
 double enclosed_volume(const Model& model, const LatticeSurface& surface) {
-  const Eigen::Matrix3Xd x = surface_vertices(surface, model.rest_positions);
-  double six_volume = 0.0;
-  for (Eigen::Index t = 0; t < surface.triangles.cols(); ++t) {
-    six_volume +=
-        x.col(surface.triangles(0, t)).dot(x.col(surface.triangles(1, t)).cross(x.col(surface.triangles(2, t))));
-  }
-  return six_volume / 6.0;
+  return test::enclosed_volume(surface_vertices(surface, model.rest_positions), surface.triangles);
 }
 
 TEST(CellRemoval, RemovingNothingRebuildsTheSameModel) {
@@ -303,6 +302,55 @@ TEST(CellRemoval, BadRemovalsAreRefusedWithTheirCause) {
   Result<CellRemoval> sizes = remove_cells(model, short_state, constraints, {0});
   ASSERT_FALSE(sizes.ok());
   EXPECT_NE(sizes.message().find("5 velocities for a body of 27 nodes"), std::string::npos) << sizes.message();
+}
+
+// The stable steps of a cut body read its stiffness's row sums: carried through a chain of cuts
+// (each summing again only the rows it changed), they stay those of the body summed whole, and so
+// do the mass scaling and each cell's step that read them.
+TEST(CellRemoval, RowSumsCarriedThroughCutsAreTheWholeBodys) {
+  std::mt19937 rng(77);
+  Model model = two_material_block({10, 8, 6}, CellLaw::kNeoHookean);
+  State state = rest_state(model);
+  Constraints constraints(model);
+  Eigen::VectorXd sums = stiffness_row_sums(model);
+  int changed_rows = 0;
+  for (int cut = 0; cut < 8; ++cut) {
+    Result<CellRemoval> removal = remove_cells(model, state, constraints, random_cells(model, 1 + cut * 3, rng));
+    ASSERT_TRUE(removal.ok()) << removal.message();
+    const Eigen::VectorXd after = stiffness_row_sums_after(model, sums, *removal);
+    for (int n = 0; n < model.num_nodes(); ++n) {  // rows the cut changed, which the sums followed
+      const int to = removal->new_node[static_cast<std::size_t>(n)];
+      changed_rows += to >= 0 && std::abs(after[to] - sums[n]) > 1e-6 * sums[n];
+    }
+    sums = after;
+    model = std::move(removal->model);
+    state = std::move(removal->state);
+    constraints = std::move(removal->constraints);
+    const Eigen::VectorXd whole = stiffness_row_sums(model);
+    ASSERT_EQ(sums.size(), whole.size());
+    EXPECT_LE((sums - whole).cwiseAbs().maxCoeff(), 1e-12 * whole.maxCoeff()) << "cut " << cut;
+  }
+  EXPECT_GT(changed_rows, 50);
+  const Eigen::VectorXd steps = cell_stable_time_steps(model, sums), whole_steps = cell_stable_time_steps(model);
+  EXPECT_LE((steps - whole_steps).cwiseAbs().maxCoeff(), 1e-12 * whole_steps.maxCoeff());
+  Model scaled = model, scaled_whole = model;
+  const MassScaling scaling = add_mass_for_time_step(scaled, 0.05, sums);
+  const MassScaling scaling_whole = add_mass_for_time_step(scaled_whole, 0.05);
+  EXPECT_GT(scaling.nodes, 0);  // the stiff core's nodes took inertia
+  EXPECT_EQ(scaling.nodes, scaling_whole.nodes);
+  EXPECT_NEAR(scaling.time_step_after, scaling_whole.time_step_after, 1e-12 * scaling_whole.time_step_after);
+  EXPECT_LE((scaled.inertia() - scaled_whole.inertia()).cwiseAbs().maxCoeff(),
+            1e-12 * scaled_whole.inertia().maxCoeff());
+  // sums of another body are refused, naming the sizes
+  try {
+    (void)cell_stable_time_steps(model, Eigen::VectorXd::Ones(3));
+    ADD_FAILURE() << "three row sums were taken for " << model.num_nodes() << " nodes";
+  } catch (const std::invalid_argument& wrong) {
+    EXPECT_NE(
+        std::string(wrong.what()).find("3 row sums for a body of " + std::to_string(model.num_nodes()) + " nodes"),
+        std::string::npos)
+        << wrong.what();
+  }
 }
 
 // Random cuts one after another, the body stepped between them: each leaves a body whose mass is

@@ -13,6 +13,7 @@
 
 #include "contact_surface.h"
 #include "cubespring/bullet/conversions.h"
+#include "cubespring/stiffness_row_sums.h"
 #include "surface_refinement.h"
 #include "surface_topology.h"
 
@@ -60,7 +61,8 @@ Result<std::unique_ptr<SoftBody>> SoftBody::create(const SoftBodySettings& setti
   return body;
 }
 
-Result<std::unique_ptr<SoftBody>> SoftBody::assemble(const SoftBodySettings& settings, Model model) {
+Result<std::unique_ptr<SoftBody>> SoftBody::assemble(const SoftBodySettings& settings, Model model,
+                                                     std::optional<Eigen::VectorXd> row_sums) {
   std::unique_ptr<SoftBody> body(new SoftBody());
   body->settings_ = settings;
   body->model_ = std::move(model);
@@ -78,18 +80,23 @@ Result<std::unique_ptr<SoftBody>> SoftBody::assemble(const SoftBodySettings& set
   try {
     const bool implicit = settings.integrator == Integrator::kImplicitEuler;
     const bool scaled = !implicit && settings.max_added_mass > 0.0;
-    // the scaling finds the stable step with its inertia (from the same assembly)
-    if (scaled) body->mass_scaling_ = add_mass_for_time_step(body->model_, settings.max_added_mass);
+    if (!implicit) {
+      // one set of stiffness row sums serves the scaling, each cell's step and the body's
+      // (Gershgorin's bound): the scaling at 0 adds nothing and gives the body's step
+      body->row_sums_ = row_sums ? std::move(*row_sums) : stiffness_row_sums(body->model_);
+      body->mass_scaling_ =
+          add_mass_for_time_step(body->model_, scaled ? settings.max_added_mass : 0.0, body->row_sums_);
+    }
     // thin cells shorten it (for the law whose thin cells stiffen), each from its own rest step;
-    // without added inertia the least of those is the body's (one assembly of the stiffness, not two)
+    // without added inertia the least of those is the body's
     if (!implicit && body->model_.cell_law != CellLaw::kSprings) {
-      body->cell_rest_steps_ = settings.time_step_safety * cell_stable_time_steps(body->model_);
+      body->cell_rest_steps_ = settings.time_step_safety * cell_stable_time_steps(body->model_, body->row_sums_);
     }
     body->sub_step_ = implicit ? settings.max_implicit_step
                       : scaled ? settings.time_step_safety * body->mass_scaling_.time_step_after
                       : body->cell_rest_steps_.size() > 0
                           ? body->cell_rest_steps_.minCoeff()
-                          : settings.time_step_safety * max_stable_time_step(body->model_);
+                          : settings.time_step_safety * body->mass_scaling_.time_step_before;
   } catch (const std::length_error& too_large) {
     return Status::error(too_large.what());
   }

@@ -3,6 +3,8 @@
 // Cells taken out of a soft body between world steps (docs/cutting.md): the body made again of
 // its remaining cells, its visual surface cut from the one it started with.
 #include <array>
+#include <functional>
+#include <future>
 #include <map>
 #include <optional>
 #include <set>
@@ -12,17 +14,19 @@
 #include "cubespring/bullet/soft_body.h"
 #include "cubespring/cell_removal.h"
 #include "cubespring/cut_surface.h"
+#include "cubespring/stiffness_row_sums.h"
 
 namespace cubespring::bullet {
 namespace {
+
+using PointKey = std::array<long long, 4>;  // CutSurface::vertex_keys
 
 // The grid cells whose part of the visual surface the cuts take away: every removed cell, and the
 // empty ones around them, where the surface hangs from the lattice beyond its cells (voxelize.h)
 // and may have hung from a removed cell; left, it would hang a cell or more from the nearest one
 // left (a corner of a cap a cell above the lattice's top, extrapolated twice the cell's height).
-std::vector<Eigen::Vector3i> surface_cut_cells(const Model& remaining, const std::vector<Eigen::Vector3i>& removed) {
-  std::set<std::array<int, 3>> kept;
-  for (const Eigen::Vector3i& g : remaining.cell_grid_index) kept.insert({g.x(), g.y(), g.z()});
+std::vector<Eigen::Vector3i> surface_cut_cells(const std::set<std::array<int, 3>>& kept,
+                                               const std::vector<Eigen::Vector3i>& removed) {
   std::set<std::array<int, 3>> cut;
   for (const Eigen::Vector3i& g : removed) {
     for (int i = -1; i <= 1; ++i) {
@@ -39,11 +43,75 @@ std::vector<Eigen::Vector3i> surface_cut_cells(const Model& remaining, const std
   return cells;
 }
 
+// The visual mesh after a cut, and which vertex before it each of its vertices is (-1: new).
+struct VisualCut {
+  CutSurface surface;
+  std::vector<int> vertex_source;
+};
+
+// The mesh the user gave, cut by every cell gone (`removed`, grid indices) and capped there:
+// cutting the surface as cut before would cut caps lying on the grid's planes again
+// (cut_surface.h). `keys_before` name the vertices of the mesh as cut before (empty before the
+// first cut: the user's vertices, in order, `vertices_before` of them).
+VisualCut cut_visual_mesh(const TriangleMesh& uncut, const Model& model, const std::vector<char>& removing,
+                          const std::vector<Eigen::Vector3i>& removed, const std::vector<PointKey>& keys_before,
+                          int vertices_before) {
+  std::set<std::array<int, 3>> kept;
+  for (int c = 0; c < model.num_cells(); ++c) {
+    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
+    if (!removing[static_cast<std::size_t>(c)]) kept.insert({g.x(), g.y(), g.z()});
+  }
+  VisualCut cut;
+  cut.surface = cut_surface(uncut, model.origin, model.cell_size, surface_cut_cells(kept, removed));
+  // keys name the same points in every cut: the user's vertices (kind 0) by their number, the
+  // cuts' points by the whole key
+  std::vector<int> before_input(static_cast<std::size_t>(uncut.num_vertices()), -1);
+  std::map<PointKey, int> before_cut;
+  for (int v = 0; v < vertices_before; ++v) {
+    const PointKey key = keys_before.empty() ? PointKey{0, v, 0, 0} : keys_before[static_cast<std::size_t>(v)];
+    if (key[0] == 0) {
+      before_input[static_cast<std::size_t>(key[1])] = v;
+    } else {
+      before_cut[key] = v;
+    }
+  }
+  for (const PointKey& key : cut.surface.vertex_keys) {
+    if (key[0] == 0) {
+      cut.vertex_source.push_back(before_input[static_cast<std::size_t>(key[1])]);
+      continue;
+    }
+    const auto found = before_cut.find(key);
+    cut.vertex_source.push_back(found == before_cut.end() ? -1 : found->second);
+  }
+  return cut;
+}
+
 }  // namespace
 
 Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
+  // the visual surface is cut on a second thread while the model is rebuilt: neither reads what
+  // the other makes (cells out of range are left to the core's removal to report)
+  std::vector<char> removing(static_cast<std::size_t>(model_.num_cells()), 0);
+  bool in_range = true;
+  for (const int c : cells) {
+    in_range = in_range && c >= 0 && c < model_.num_cells();
+    if (in_range) removing[static_cast<std::size_t>(c)] = 1;
+  }
+  std::vector<Eigen::Vector3i> removed = removed_cells_;
+  for (int c = 0; in_range && c < model_.num_cells(); ++c) {
+    if (removing[static_cast<std::size_t>(c)]) removed.push_back(model_.cell_grid_index[static_cast<std::size_t>(c)]);
+  }
+  std::future<VisualCut> visual;
+  if (uncut_visual_mesh_ && in_range) {
+    visual = std::async(std::launch::async, cut_visual_mesh, std::cref(*uncut_visual_mesh_), std::cref(model_),
+                        std::cref(removing), std::cref(removed), std::cref(visual_keys_), embedding_.num_vertices());
+  }
   Result<CellRemoval> removal = cubespring::remove_cells(model_, state_, constraints_, cells);
-  if (!removal) return Status::error("remove_cells: " + removal.message());
+  if (!removal) return Status::error("remove_cells: " + removal.message());  // (the future waits)
+  // the stable steps read the stiffness's row sums: those the cut changed are summed again
+  std::optional<Eigen::VectorXd> row_sums;
+  if (row_sums_.size() == model_.num_nodes()) row_sums = stiffness_row_sums_after(model_, row_sums_, *removal);
+
   Cut cut;
   cut.removed_cells = removal->removed_cells;
   cut.removed_mass = removal->removed_mass;
@@ -55,30 +123,15 @@ Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
   loads.nodal_forces = carry_node_columns(*removal, loads_.nodal_forces);
   SoftBodySettings settings = settings_;
   settings.lattice = lattice_desc(removal->model);
-  std::vector<Eigen::Vector3i> removed = removed_cells_;
-  for (int c = 0; c < model_.num_cells(); ++c) {
-    if (cut.new_cell[static_cast<std::size_t>(c)] < 0)
-      removed.push_back(model_.cell_grid_index[static_cast<std::size_t>(c)]);
+  std::vector<PointKey> visual_keys;
+  if (visual.valid()) {
+    VisualCut surface = visual.get();
+    cut.visual_vertex_source = std::move(surface.vertex_source);
+    cut.cap_triangles = surface.surface.cap_triangles;
+    visual_keys = std::move(surface.surface.vertex_keys);
+    settings.visual_mesh = std::move(surface.surface.mesh);
   }
-  std::vector<std::array<long long, 4>> visual_keys;
-  if (uncut_visual_mesh_) {  // the surface it started with, cut by every cell gone, and capped there
-    CutSurface surface =
-        cut_surface(*uncut_visual_mesh_, model_.origin, model_.cell_size, surface_cut_cells(removal->model, removed));
-    // which vertex before the cut each one is: keys name the same points in every cut
-    std::map<std::array<long long, 4>, int> before;
-    for (int v = 0; v < embedding_.num_vertices(); ++v) {
-      before[visual_keys_.empty() ? std::array<long long, 4>{0, v, 0, 0} : visual_keys_[static_cast<std::size_t>(v)]] =
-          v;
-    }
-    for (const std::array<long long, 4>& key : surface.vertex_keys) {
-      const auto found = before.find(key);
-      cut.visual_vertex_source.push_back(found == before.end() ? -1 : found->second);
-    }
-    cut.cap_triangles = surface.cap_triangles;
-    visual_keys = std::move(surface.vertex_keys);
-    settings.visual_mesh = std::move(surface.mesh);
-  }
-  Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(removal->model));
+  Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(removal->model), std::move(row_sums));
   if (!rebuilt) return Status::error("remove_cells: " + rebuilt.message());
   SoftBody& after = **rebuilt;
   after.state_ = std::move(removal->state);

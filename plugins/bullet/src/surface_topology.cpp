@@ -55,29 +55,41 @@ SurfaceTopology surface_topology(const Eigen::Matrix3Xd& rest_positions, const E
   const auto num_vertices = static_cast<int>(rest_positions.cols());
   SurfaceTopology topology;
 
-  // edges: (lower vertex, upper vertex, triangle, corner), sorted so that a shared edge's two
-  // entries are next to each other
-  std::vector<std::tuple<std::int64_t, int, int>> edges;
-  edges.reserve(static_cast<std::size_t>(3 * num_triangles));
+  // edges: (upper vertex, triangle, corner) under their lower vertex, each vertex's sorted, so
+  // that a shared edge's two entries are next to each other (a counting sort by the lower vertex:
+  // a cut body finds its topology again at every cut)
+  std::vector<int> lower_offset(static_cast<std::size_t>(num_vertices) + 1, 0);
+  const auto lower = [&](Eigen::Index t, int k) { return std::min(triangles(k, t), triangles((k + 1) % 3, t)); };
+  const auto upper = [&](Eigen::Index t, int k) { return std::max(triangles(k, t), triangles((k + 1) % 3, t)); };
   for (Eigen::Index t = 0; t < num_triangles; ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = triangles(k, t), b = triangles((k + 1) % 3, t);
-      const std::int64_t key = static_cast<std::int64_t>(std::min(a, b)) * num_vertices + std::max(a, b);
-      edges.emplace_back(key, static_cast<int>(t), k);
+    for (int k = 0; k < 3; ++k) ++lower_offset[static_cast<std::size_t>(lower(t, k)) + 1];
+  }
+  std::partial_sum(lower_offset.begin(), lower_offset.end(), lower_offset.begin());
+  std::vector<std::tuple<int, int, int>> edges(static_cast<std::size_t>(3 * num_triangles));
+  {
+    std::vector<int> fill(lower_offset.begin(), lower_offset.end() - 1);
+    for (Eigen::Index t = 0; t < num_triangles; ++t) {
+      for (int k = 0; k < 3; ++k) {
+        edges[static_cast<std::size_t>(fill[static_cast<std::size_t>(lower(t, k))]++)] = {upper(t, k),
+                                                                                          static_cast<int>(t), k};
+      }
     }
   }
-  std::sort(edges.begin(), edges.end());
   topology.neighbour.setConstant(3, num_triangles, -1);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t end = i;
-    while (end < edges.size() && std::get<0>(edges[end]) == std::get<0>(edges[i])) ++end;
-    if (end - i == 2) {
-      const auto [key_a, ta, ka] = edges[i];
-      const auto [key_b, tb, kb] = edges[i + 1];
-      topology.neighbour(ka, ta) = tb;
-      topology.neighbour(kb, tb) = ta;
+  for (std::size_t v = 0; v < static_cast<std::size_t>(num_vertices); ++v) {
+    const auto first = edges.begin() + lower_offset[v], last = edges.begin() + lower_offset[v + 1];
+    std::sort(first, last);
+    for (auto i = first; i != last;) {
+      auto end = i;
+      while (end != last && std::get<0>(*end) == std::get<0>(*i)) ++end;
+      if (end - i == 2) {
+        const auto [upper_a, ta, ka] = *i;
+        const auto [upper_b, tb, kb] = *(i + 1);
+        topology.neighbour(ka, ta) = tb;
+        topology.neighbour(kb, tb) = ta;
+      }
+      i = end;
     }
-    i = end;
   }
 
   topology.vertex_offset.assign(static_cast<std::size_t>(num_vertices) + 1, 0);

@@ -202,8 +202,10 @@ class SoftBody {
   friend class ContactProjector;
   SoftBody() = default;
   /// The body of `model` (built from settings.lattice) with settings' sub-step, inertia and
-  /// contact surface, at rest.
-  static Result<std::unique_ptr<SoftBody>> assemble(const SoftBodySettings& settings, Model model);
+  /// contact surface, at rest. An explicit body's stable step reads `model`'s stiffness row sums
+  /// (stiffness_row_sums()): given, as a cut carries them, or else summed here.
+  static Result<std::unique_ptr<SoftBody>> assemble(const SoftBodySettings& settings, Model model,
+                                                    std::optional<Eigen::VectorXd> row_sums = std::nullopt);
   /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
   void index_vertices_by_node();
   /// Contact-surface vertex v from its nodes; returns how far it moved, squared [m^2] (a square
@@ -242,6 +244,7 @@ class SoftBody {
   double sub_step_ = 0.0;
   Eigen::VectorXd cell_rest_steps_;  // explicit steps: each cell's rest step times the safety [s]
   MassScaling mass_scaling_;
+  Eigen::VectorXd row_sums_;  // explicit steps: the stiffness row sums at rest (stiffness_row_sums.h)
   Times times_;
   double time_step_safety_ = 0.0;  // SoftBodySettings::time_step_safety
   StepReport last_report_;
