@@ -16,6 +16,32 @@
 namespace cubespring {
 namespace {
 
+// Where each cell of `before` is among `after`'s cells (-1: removed): the kept cells in their
+// order when the numbering axis is the same (build_model() orders cells by grid key), else found
+// by grid index.
+std::vector<int> cells_in(const Model& after, const Model& before, const std::vector<char>& removed) {
+  std::vector<int> at(static_cast<std::size_t>(before.num_cells()), -1);
+  int next = 0;
+  bool in_order = after.major_axis == before.major_axis;
+  for (int c = 0; c < before.num_cells() && in_order; ++c) {
+    if (removed[static_cast<std::size_t>(c)]) continue;
+    in_order = next < after.num_cells() && after.cell_grid_index[static_cast<std::size_t>(next)] ==
+                                               before.cell_grid_index[static_cast<std::size_t>(c)];
+    at[static_cast<std::size_t>(c)] = next++;
+  }
+  if (in_order && next == after.num_cells()) return at;
+  std::map<std::array<int, 3>, int> cell_at;
+  for (int c = 0; c < after.num_cells(); ++c) {
+    const Eigen::Vector3i& g = after.cell_grid_index[static_cast<std::size_t>(c)];
+    cell_at.emplace(std::array<int, 3>{g.x(), g.y(), g.z()}, c);
+  }
+  for (int c = 0; c < before.num_cells(); ++c) {
+    const Eigen::Vector3i& g = before.cell_grid_index[static_cast<std::size_t>(c)];
+    at[static_cast<std::size_t>(c)] = removed[static_cast<std::size_t>(c)] ? -1 : cell_at.at({g.x(), g.y(), g.z()});
+  }
+  return at;
+}
+
 Status check_sizes(const Model& model, const State& state, const Constraints& constraints) {
   const Eigen::Index nodes = model.num_nodes();
   if (state.positions.cols() != nodes || state.velocities.cols() != nodes) {
@@ -91,56 +117,62 @@ Result<CellRemoval> remove_cells(const Model& model, const State& state, const C
   // the remaining cells are the same cells: each keeps its corners' nodes (a node's copies, where
   // split faces made them, are told apart by the cells that have them, not by their grid index)
   removal.new_cell.assign(static_cast<std::size_t>(num_cells), -1);
-  std::map<std::array<int, 3>, int> new_cell_at;
-  for (int c = 0; c < after.num_cells(); ++c) {
-    const Eigen::Vector3i& g = after.cell_grid_index[static_cast<std::size_t>(c)];
-    new_cell_at.emplace(std::array<int, 3>{g.x(), g.y(), g.z()}, c);
-  }
+  const std::vector<int> kept_cell = cells_in(after, model, removed);
   removal.new_node.assign(static_cast<std::size_t>(model.num_nodes()), -1);
-  // (new node, old node): the mass of the cells whose corner is one and was the other [kg]
-  std::map<std::pair<int, int>, double> sources;
+  removal.source_node.assign(static_cast<std::size_t>(after.num_nodes()), -1);
+  std::vector<char> joined(static_cast<std::size_t>(after.num_nodes()), 0);  // from more than one old node
+  bool any_joined = false;
   for (int c = 0; c < num_cells; ++c) {
-    if (removed[static_cast<std::size_t>(c)]) continue;
-    const Eigen::Vector3i& g = model.cell_grid_index[static_cast<std::size_t>(c)];
-    const int to = new_cell_at.at({g.x(), g.y(), g.z()});
+    const int to = kept_cell[static_cast<std::size_t>(c)];
+    if (to < 0) continue;
     removal.new_cell[static_cast<std::size_t>(c)] = to;
     for (std::size_t k = 0; k < kCornersPerCell; ++k) {
       const int old = model.cell_nodes[static_cast<std::size_t>(c)][k];
       const int node = after.cell_nodes[static_cast<std::size_t>(to)][k];
       removal.new_node[static_cast<std::size_t>(old)] = node;
-      sources[{node, old}] +=
+      int& source = removal.source_node[static_cast<std::size_t>(node)];
+      if (source >= 0 && source != old) joined[static_cast<std::size_t>(node)] = 1, any_joined = true;
+      if (source < 0) source = old;
+    }
+  }
+  // each new node from its old one; where the removed cells alone held a node together its copies
+  // start alike, and where they alone held a node's copies apart they are one node again, at the
+  // mean of their places and velocities weighted by the mass of the cells each brings (each cell's
+  // eighth at its corner), so that momentum is kept
+  removal.state.positions.resize(3, after.num_nodes());
+  removal.state.velocities.resize(3, after.num_nodes());
+  removal.state.time = state.time;
+  for (int n = 0; n < after.num_nodes(); ++n) {
+    removal.state.positions.col(n) = state.positions.col(removal.source_node[static_cast<std::size_t>(n)]);
+    removal.state.velocities.col(n) = state.velocities.col(removal.source_node[static_cast<std::size_t>(n)]);
+  }
+  if (any_joined) {
+    Eigen::VectorXd weight = Eigen::VectorXd::Zero(after.num_nodes());
+    for (int n = 0; n < after.num_nodes(); ++n) {
+      if (!joined[static_cast<std::size_t>(n)]) continue;
+      removal.state.positions.col(n).setZero();
+      removal.state.velocities.col(n).setZero();
+    }
+    for (int c = 0; c < num_cells; ++c) {
+      const int to = kept_cell[static_cast<std::size_t>(c)];
+      if (to < 0) continue;
+      const double eighth =
           model.materials[static_cast<std::size_t>(model.cell_material[static_cast<std::size_t>(c)])].density * volume /
           kCornersPerCell;
+      for (std::size_t k = 0; k < kCornersPerCell; ++k) {
+        const int node = after.cell_nodes[static_cast<std::size_t>(to)][k];
+        if (!joined[static_cast<std::size_t>(node)]) continue;
+        const int old = model.cell_nodes[static_cast<std::size_t>(c)][k];
+        removal.state.positions.col(node) += eighth * state.positions.col(old);
+        removal.state.velocities.col(node) += eighth * state.velocities.col(old);
+        weight[node] += eighth;
+      }
     }
-  }
-  // each new node from its old one; where the removed cells alone held a node's copies apart they
-  // are one node again, at their mean place and velocity weighted by the mass of the cells each
-  // brings (so that momentum is kept), and where they alone held a node together its copies start
-  // alike
-  removal.source_node.assign(static_cast<std::size_t>(after.num_nodes()), -1);
-  removal.state.positions.setZero(3, after.num_nodes());
-  removal.state.velocities.setZero(3, after.num_nodes());
-  removal.state.time = state.time;
-  std::vector<double> kept_mass(static_cast<std::size_t>(after.num_nodes()), 0.0);
-  std::vector<int> count(static_cast<std::size_t>(after.num_nodes()), 0);
-  for (const auto& [ends, mass] : sources) ++count[static_cast<std::size_t>(ends.first)];
-  for (const auto& [ends, mass] : sources) {
-    const auto [node, old] = ends;
-    if (removal.source_node[static_cast<std::size_t>(node)] < 0)
-      removal.source_node[static_cast<std::size_t>(node)] = old;
-    if (count[static_cast<std::size_t>(node)] == 1) {
-      removal.state.positions.col(node) = state.positions.col(old);
-      removal.state.velocities.col(node) = state.velocities.col(old);
-      continue;
+    for (int n = 0; n < after.num_nodes(); ++n) {
+      if (!joined[static_cast<std::size_t>(n)]) continue;
+      removal.state.positions.col(n) /= weight[n];
+      removal.state.velocities.col(n) /= weight[n];
     }
-    removal.state.positions.col(node) += mass * state.positions.col(old);
-    removal.state.velocities.col(node) += mass * state.velocities.col(old);
-    kept_mass[static_cast<std::size_t>(node)] += mass;
-  }
-  for (int n = 0; n < after.num_nodes(); ++n) {
-    if (count[static_cast<std::size_t>(n)] < 2) continue;
-    removal.state.positions.col(n) /= kept_mass[static_cast<std::size_t>(n)];
-    removal.state.velocities.col(n) /= kept_mass[static_cast<std::size_t>(n)];
   }
 
   Result<Constraints> carried = constraints.gathered(removal.source_node);
