@@ -11,7 +11,7 @@
 #include <string>
 #include <utility>
 
-#include "model/pieces.h"
+#include "model/topology_change.h"
 
 namespace cubespring {
 namespace {
@@ -42,25 +42,11 @@ std::vector<int> cells_in(const Model& after, const Model& before, const std::ve
   return at;
 }
 
-Status check_sizes(const Model& model, const State& state, const Constraints& constraints) {
-  const Eigen::Index nodes = model.num_nodes();
-  if (state.positions.cols() != nodes || state.velocities.cols() != nodes) {
-    return Status::error("the state has " + std::to_string(state.positions.cols()) + " positions and " +
-                         std::to_string(state.velocities.cols()) + " velocities for a body of " +
-                         std::to_string(nodes) + " nodes");
-  }
-  if (constraints.num_nodes() != nodes) {
-    return Status::error("the constraints are for " + std::to_string(constraints.num_nodes()) +
-                         " nodes, the body has " + std::to_string(nodes));
-  }
-  return {};
-}
-
 }  // namespace
 
 Result<CellRemoval> remove_cells(const Model& model, const State& state, const Constraints& constraints,
                                  const std::vector<int>& cells) {
-  if (Status sizes = check_sizes(model, state, constraints); !sizes) return sizes;
+  if (Status sizes = check_body_sizes(model, state, constraints); !sizes) return sizes;
   const int num_cells = model.num_cells();
   std::vector<char> removed(static_cast<std::size_t>(num_cells), 0);
   for (const int cell : cells) {

@@ -7,21 +7,12 @@
 #include <string>
 #include <utility>
 
-#include "model/pieces.h"
+#include "model/topology_change.h"
 
 namespace cubespring {
 Result<FaceSplit> split_faces(const Model& model, const State& state, const Constraints& constraints,
                               const std::vector<CellFace>& faces) {
-  const Eigen::Index nodes = model.num_nodes();
-  if (state.positions.cols() != nodes || state.velocities.cols() != nodes) {
-    return Status::error("the state has " + std::to_string(state.positions.cols()) + " positions and " +
-                         std::to_string(state.velocities.cols()) + " velocities for a body of " +
-                         std::to_string(nodes) + " nodes");
-  }
-  if (constraints.num_nodes() != nodes) {
-    return Status::error("the constraints are for " + std::to_string(constraints.num_nodes()) +
-                         " nodes, the body has " + std::to_string(nodes));
-  }
+  if (Status sizes = check_body_sizes(model, state, constraints); !sizes) return sizes;
   // the body's faces and the new ones, each once (build_model() checks that both cells exist)
   LatticeDesc desc = lattice_desc(model);
   std::set<std::pair<std::array<int, 3>, int>> listed;

@@ -1,8 +1,9 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-#include "model/pieces.h"
+#include "model/topology_change.h"
 
 #include <numeric>
+#include <string>
 #include <vector>
 
 namespace cubespring {
@@ -28,6 +29,20 @@ int count_pieces(const Model& model) {
   int pieces = 0;
   for (int n = 0; n < model.num_nodes(); ++n) pieces += root(n) == n;
   return pieces;
+}
+
+Status check_body_sizes(const Model& model, const State& state, const Constraints& constraints) {
+  const Eigen::Index nodes = model.num_nodes();
+  if (state.positions.cols() != nodes || state.velocities.cols() != nodes) {
+    return Status::error("the state has " + std::to_string(state.positions.cols()) + " positions and " +
+                         std::to_string(state.velocities.cols()) + " velocities for a body of " +
+                         std::to_string(nodes) + " nodes");
+  }
+  if (constraints.num_nodes() != nodes) {
+    return Status::error("the constraints are for " + std::to_string(constraints.num_nodes()) +
+                         " nodes, the body has " + std::to_string(nodes));
+  }
+  return {};
 }
 
 }  // namespace cubespring
