@@ -8,7 +8,6 @@
 #include <map>
 #include <numeric>
 #include <set>
-#include <sstream>
 #include <string>
 
 #include "model/cell_geometry.h"
@@ -19,10 +18,13 @@ namespace {
 using GridKey = std::array<int, 3>;
 GridKey key_of(const Eigen::Vector3i& g) { return {g.x(), g.y(), g.z()}; }
 
+std::string cell_text(const Eigen::Vector3i& cell) {
+  return "(" + std::to_string(cell.x()) + ", " + std::to_string(cell.y()) + ", " + std::to_string(cell.z()) + ")";
+}
+
 std::string face_text(std::size_t f, const CellFace& face) {
-  std::ostringstream text;
-  text << "split face " << f << " (cell " << face.cell.transpose() << ", axis " << face.axis << ")";
-  return text.str();
+  return "split face " + std::to_string(f) + " (cell " + cell_text(face.cell) + ", axis " + std::to_string(face.axis) +
+         ")";
 }
 
 // Union-find over the 8 corners around a point.
@@ -53,10 +55,8 @@ Result<std::vector<PointCopies>> split_point_copies(const std::vector<Eigen::Vec
     next[face.axis] += 1;
     for (const Eigen::Vector3i& side : {face.cell, next}) {
       if (cell_at.count(key_of(side)) == 0) {
-        std::ostringstream message;
-        message << face_text(f, face) << ": cell (" << side.transpose()
-                << ") is not a cell of the body (a face can only be split between two cells)";
-        return Status::error(message.str());
+        return Status::error(face_text(f, face) + ": cell " + cell_text(side) +
+                             " is not a cell of the body (a face can only be split between two cells)");
       }
     }
     if (!split.emplace(key_of(face.cell), face.axis).second)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -29,20 +30,60 @@ Eigen::Matrix3Xd visual_rest(const bullet::SoftBody& body) {
   return vertices;
 }
 
-// A 4 x 4 x 10 cm column of 10 kPa tissue hanging from its top layer of nodes, 1 cm above a table;
-// a slab of cells 4 cm up is cut out: the lower piece falls, lands and the table carries it, while
-// the upper piece hangs on.
-TEST(BulletCutting, APieceCutOffFallsAndTheTableCarriesIt) {
+// A 4 x 4 x 10 cm column of 10 kPa tissue hanging from its top layer of nodes, 1 cm above a
+// table, its surface its lattice's.
+struct HangingColumn {
   test::BulletScene scene;
-  btRigidBody* floor = scene.add_floor(-0.01);
+  btRigidBody* floor = nullptr;
   bullet::SoftBodySettings settings = test::block({4, 4, 10}, 0.01, soft_tissue(1e4));
-  settings.contact.friction = 0.3;
-  bullet::SoftBody* body = scene.add_soft(settings);
+  bullet::SoftBody* body = nullptr;
+
+  HangingColumn() {
+    floor = scene.add_floor(-0.01);
+    settings.contact.friction = 0.3;
+    body = scene.add_soft(settings);
+  }
+  // The nodes at or below grid layer `layer` and their mass [kg].
+  std::pair<std::vector<int>, double> nodes_up_to(int layer) const {
+    std::pair<std::vector<int>, double> lower{{}, 0.0};
+    for (int n = 0; n < body->model().num_nodes(); ++n) {
+      if (body->model().node_grid_index[static_cast<std::size_t>(n)].z() <= layer) {
+        lower.first.push_back(n);
+        lower.second += body->model().mass[n];
+      }
+    }
+    return lower;
+  }
+  // After 2 s more, the piece of `nodes` (of `mass` [kg]) rests on the table, which carries it.
+  void expect_the_table_carries(const std::vector<int>& nodes, double mass) {
+    scene.run(2.0);
+    ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
+    double lowest = 1.0, centre = 0.0, speed_sq = 0.0;
+    for (const int n : nodes) {
+      lowest = std::min(lowest, body->state().positions(2, n));
+      centre += body->model().mass[n] * body->state().positions(2, n) / mass;
+      speed_sq += body->model().mass[n] * body->state().velocities.col(n).squaredNorm() / mass;
+    }
+    const double ground = -scene.world().getContactWrench(floor).force.z();
+    std::printf(
+        "lower piece: %.4f kg, lowest node z = %.2f mm, centre %.2f mm, rms speed %.2e m/s; table %.5f N for %.5f N\n",
+        mass, 1e3 * lowest, 1e3 * centre, std::sqrt(speed_sq), ground, mass * 9.81);
+    EXPECT_NEAR(lowest, -0.01, 0.5e-3) << "it rests on the table";
+    EXPECT_LT(std::sqrt(speed_sq), 1e-3);
+    EXPECT_NEAR(ground, mass * 9.81, 0.01 * mass * 9.81);
+  }
+};
+
+// The column's slab of cells 4 cm up is cut out: the lower piece falls, lands and the table
+// carries it, while the upper piece hangs on.
+TEST(BulletCutting, APieceCutOffFallsAndTheTableCarriesIt) {
+  HangingColumn column;
+  bullet::SoftBody* body = column.body;
   ASSERT_NE(body, nullptr);
   ASSERT_TRUE(body->constraints().fix_box(body->model(), {-1, -1, 0.0999}, {1, 1, 1}).ok());
-  scene.run(0.5);
-  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
-  EXPECT_NEAR(scene.world().getContactWrench(floor).force.z(), 0.0, 1e-12) << "hangs clear of the table";
+  column.scene.run(0.5);
+  ASSERT_TRUE(column.scene.world().getSoftBodyError().empty()) << column.scene.world().getSoftBodyError();
+  EXPECT_NEAR(column.scene.world().getContactWrench(column.floor).force.z(), 0.0, 1e-12) << "hangs clear of the table";
 
   std::vector<int> slab;
   for (int c = 0; c < body->model().num_cells(); ++c) {
@@ -55,34 +96,77 @@ TEST(BulletCutting, APieceCutOffFallsAndTheTableCarriesIt) {
   EXPECT_EQ(cut->removed_cells, 16);
   EXPECT_EQ(cut->pieces, 2);
   EXPECT_NEAR(body->model().total_mass(), mass_before - cut->removed_mass, 1e-12 * mass_before);
-  EXPECT_NEAR(cut->removed_mass, 16 * 1e-6 * settings.lattice.materials[0].density, 1e-15);
+  EXPECT_NEAR(cut->removed_mass, 16 * 1e-6 * column.settings.lattice.materials[0].density, 1e-15);
   EXPECT_LT((momentum_before - momentum(*body) - cut->removed_momentum).norm(),
             1e-12 * (body->state().velocities.cwiseAbs() * body->model().mass).norm() + 1e-18);
   EXPECT_EQ(body->constraints().num_driven(), 25) << "the top layer stays held";
+  const auto [lower, lower_mass] = column.nodes_up_to(4);
+  column.expect_the_table_carries(lower, lower_mass);
+}
 
+// The column split through 4 cm up, as a blade would: nothing leaves, the plane's 25 nodes get
+// copies, and the lower half falls, lands and the table carries it, while the upper hangs on.
+TEST(BulletCutting, AColumnSplitThroughFallsApartOntoTheTable) {
+  HangingColumn column;
+  bullet::SoftBody* body = column.body;
+  ASSERT_NE(body, nullptr);
+  ASSERT_TRUE(body->constraints().fix_box(body->model(), {-1, -1, 0.0999}, {1, 1, 1}).ok());
+  column.scene.run(0.5);
+  std::vector<CellFace> blade;
+  for (const Eigen::Vector3i& cell : body->model().cell_grid_index) {
+    if (cell.z() == 3) blade.push_back({cell, 2});
+  }
+  const double mass_before = body->model().total_mass();
+  const Eigen::Vector3d momentum_before = momentum(*body);
+  Result<bullet::SoftBody::Split> split = body->split_faces(blade);
+  ASSERT_TRUE(split.ok()) << split.message();
+  EXPECT_EQ(split->faces_split, 16);
+  EXPECT_EQ(split->nodes_added, 25);
+  EXPECT_EQ(split->pieces, 2);
+  EXPECT_NEAR(body->model().total_mass(), mass_before, 1e-15 * mass_before);
+  EXPECT_LT((momentum_before - momentum(*body)).norm(),
+            1e-13 * (body->state().velocities.cwiseAbs() * body->model().mass).norm() + 1e-18);
+  EXPECT_EQ(body->constraints().num_driven(), 25) << "the top layer stays held";
+  // the lower half: the nodes below the plane and the plane's copies its cells have
+  std::vector<char> lower_node(static_cast<std::size_t>(body->model().num_nodes()), 0);
+  for (int c = 0; c < body->model().num_cells(); ++c) {
+    if (body->model().cell_grid_index[static_cast<std::size_t>(c)].z() > 3) continue;
+    for (const int n : body->model().cell_nodes[static_cast<std::size_t>(c)])
+      lower_node[static_cast<std::size_t>(n)] = 1;
+  }
   std::vector<int> lower;
   double lower_mass = 0.0;
   for (int n = 0; n < body->model().num_nodes(); ++n) {
-    if (body->model().node_grid_index[static_cast<std::size_t>(n)].z() <= 4) {
-      lower.push_back(n);
-      lower_mass += body->model().mass[n];
-    }
+    if (!lower_node[static_cast<std::size_t>(n)]) continue;
+    lower.push_back(n);
+    lower_mass += body->model().mass[n];
   }
-  scene.run(2.0);
-  ASSERT_TRUE(scene.world().getSoftBodyError().empty()) << scene.world().getSoftBodyError();
-  double lowest = 1.0, centre = 0.0, speed_sq = 0.0;
-  for (const int n : lower) {
-    lowest = std::min(lowest, body->state().positions(2, n));
-    centre += body->model().mass[n] * body->state().positions(2, n) / lower_mass;
-    speed_sq += body->model().mass[n] * body->state().velocities.col(n).squaredNorm() / lower_mass;
-  }
-  const double ground = -scene.world().getContactWrench(floor).force.z();
-  std::printf(
-      "lower piece: %.4f kg, lowest node z = %.2f mm, centre %.2f mm, rms speed %.2e m/s; table %.5f N for %.5f N\n",
-      lower_mass, 1e3 * lowest, 1e3 * centre, std::sqrt(speed_sq), ground, lower_mass * 9.81);
-  EXPECT_NEAR(lowest, -0.01, 0.5e-3) << "it rests on the table";
-  EXPECT_LT(std::sqrt(speed_sq), 1e-3);
-  EXPECT_NEAR(ground, lower_mass * 9.81, 0.01 * lower_mass * 9.81);
+  EXPECT_NEAR(lower_mass, 4 * 16 * 1e-6 * column.settings.lattice.materials[0].density, 1e-15);
+  column.expect_the_table_carries(lower, lower_mass);
+}
+
+// A body with a visual mesh is not split (its visual surface would not follow), and nothing
+// changes; a face that is not between two cells is refused by name.
+TEST(BulletCutting, ASplitThatCannotBeMadeChangesNothing) {
+  HangingColumn column;
+  ASSERT_NE(column.body, nullptr);
+  const int nodes = column.body->model().num_nodes();
+  Result<bullet::SoftBody::Split> outside = column.body->split_faces({{{0, 0, 9}, 2}});
+  ASSERT_FALSE(outside.ok());
+  EXPECT_NE(outside.message().find("cell (0, 0, 10) is not a cell of the body"), std::string::npos)
+      << outside.message();
+  EXPECT_EQ(column.body->model().num_nodes(), nodes);
+
+  test::BulletScene scene;
+  bullet::SoftBodySettings settings = test::block({2, 2, 2}, 0.01, soft_tissue(1e4));
+  settings.visual_mesh = box_mesh({0, 0, 0}, {0.02, 0.02, 0.02});
+  bullet::SoftBody* body = scene.add_soft(settings);
+  ASSERT_NE(body, nullptr);
+  Result<bullet::SoftBody::Split> with_mesh = body->split_faces({{{0, 0, 0}, 0}});
+  ASSERT_FALSE(with_mesh.ok());
+  EXPECT_NE(with_mesh.message().find("a visual mesh does not follow a split yet"), std::string::npos)
+      << with_mesh.message();
+  EXPECT_TRUE(body->model().split_faces.empty());
 }
 
 // A 10 cm ball of 10 kPa tissue, its sphere the visual mesh, settled on a table; a cautery

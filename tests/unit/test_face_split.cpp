@@ -255,16 +255,17 @@ TEST(FaceSplit, BadFacesAreRefusedWithTheirCause) {
     Result<FaceSplit> split = split_faces(model, state, constraints, faces);
     return split.ok() ? std::string("accepted") : split.message();
   };
-  EXPECT_NE(message({{{0, 0, 0}, 3}}).find("split face 0 (cell 0 0 0, axis 3): the axis must be 0, 1 or 2"),
+  EXPECT_NE(message({{{0, 0, 0}, 3}}).find("split face 0 (cell (0, 0, 0), axis 3): the axis must be 0, 1 or 2"),
             std::string::npos)
       << message({{{0, 0, 0}, 3}});
-  EXPECT_NE(message({{{0, 0, 0}, 0}, {{1, 0, 0}, 0}}).find("cell (2 0 0) is not a cell of the body"), std::string::npos)
+  EXPECT_NE(message({{{0, 0, 0}, 0}, {{1, 0, 0}, 0}}).find("cell (2, 0, 0) is not a cell of the body"),
+            std::string::npos)
       << message({{{1, 0, 0}, 0}});
   LatticeDesc twice = tissue_box({2, 2, 2});
   twice.split_faces = {{{0, 0, 0}, 1}, {{0, 0, 0}, 1}};
   Result<Model> listed_twice = build_model(twice);
   ASSERT_FALSE(listed_twice.ok());
-  EXPECT_NE(listed_twice.message().find("split face 1 (cell 0 0 0, axis 1) is listed twice"), std::string::npos)
+  EXPECT_NE(listed_twice.message().find("split face 1 (cell (0, 0, 0), axis 1) is listed twice"), std::string::npos)
       << listed_twice.message();
   State short_state = state;
   short_state.positions.conservativeResize(3, 4);

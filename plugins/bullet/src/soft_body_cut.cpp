@@ -1,7 +1,8 @@
 // SPDX-FileCopyrightText: 2026 cubespring authors
 // SPDX-License-Identifier: MIT
-// Cells taken out of a soft body between world steps (docs/cutting.md): the body made again of
-// its remaining cells, its visual surface cut from the one it started with.
+// A soft body's cells taken out, or the faces between them split, between world steps
+// (docs/cutting.md): the body made again of its remaining cells, its visual surface cut from the
+// one it started with.
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -16,6 +17,7 @@
 #include "cubespring/bullet/soft_body.h"
 #include "cubespring/cell_removal.h"
 #include "cubespring/cut_surface.h"
+#include "cubespring/face_split.h"
 #include "cubespring/stiffness_row_sums.h"
 
 namespace cubespring::bullet {
@@ -143,34 +145,77 @@ Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
   Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(removal->model), std::move(row_sums));
   if (!rebuilt) return Status::error("remove_cells: " + rebuilt.message());
   SoftBody& after = **rebuilt;
+  const std::vector<int> source_node = std::move(removal->source_node);
   after.state_ = std::move(removal->state);
   after.constraints_ = std::move(removal->constraints);
   after.loads_ = std::move(loads);
+  after.removed_cells_ = std::move(removed);
+  after.visual_keys_ = std::move(visual_keys);
+  hand_over(after, source_node);
+  after.update_surface();
+  *this = std::move(after);
+  return cut;
+}
+
+Result<SoftBody::Split> SoftBody::split_faces(const std::vector<CellFace>& faces) {
+  if (uncut_visual_mesh_) {
+    return Status::error(
+        "split_faces: this body has a visual mesh, and a visual mesh does not follow a split yet "
+        "(docs/cutting.md, \"Not yet\"); a body whose surface is its lattice's can be split");
+  }
+  Result<FaceSplit> split = cubespring::split_faces(model_, state_, constraints_, faces);
+  if (!split) return Status::error("split_faces: " + split.message());
+  Split done;
+  done.faces_split = split->faces_split;
+  done.nodes_added = split->nodes_added;
+  done.pieces = split->pieces;
+  done.source_node = split->source_node;
+  Loads loads = loads_;
+  loads.nodal_forces = carry_node_forces(*split, loads_.nodal_forces);
+  SoftBodySettings settings = settings_;
+  settings.lattice = lattice_desc(split->model);
+  // the nodes given copies have new rows: the stable steps sum the stiffness again
+  Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(split->model));
+  if (!rebuilt) return Status::error("split_faces: " + rebuilt.message());
+  SoftBody& after = **rebuilt;
+  after.state_ = std::move(split->state);
+  after.constraints_ = std::move(split->constraints);
+  after.loads_ = std::move(loads);
+  after.removed_cells_ = removed_cells_;
+  after.visual_keys_ = visual_keys_;
+  hand_over(after, done.source_node);
+  after.update_surface();
+  *this = std::move(after);
+  return done;
+}
+
+void SoftBody::hand_over(SoftBody& after, const std::vector<int>& source_node) {
   after.step_settings_ = step_settings_;  // threads and the integrator as the user left them
   after.times_ = times_;
   after.last_report_ = last_report_;
   after.stop_message_ = stop_message_;
   after.uncut_visual_mesh_ = std::move(uncut_visual_mesh_);
-  after.removed_cells_ = std::move(removed);
-  after.visual_keys_ = std::move(visual_keys);
+  std::vector<std::vector<int>> copies(static_cast<std::size_t>(model_.num_nodes()));  // of each old node
+  for (std::size_t n = 0; n < source_node.size(); ++n) {
+    copies[static_cast<std::size_t>(source_node[n])].push_back(static_cast<int>(n));
+  }
   for (const std::optional<Anchor>& anchor : anchors_) {
     std::optional<Anchor> carried;
     if (anchor) {
-      Anchor kept{anchor->body, {}, Eigen::Matrix3Xd(3, static_cast<Eigen::Index>(anchor->nodes.size()))};
+      Anchor kept{anchor->body, {}, Eigen::Matrix3Xd(3, 0)};
+      std::vector<Eigen::Vector3d> local;
       for (std::size_t i = 0; i < anchor->nodes.size(); ++i) {
-        const int node = cut.new_node[static_cast<std::size_t>(anchor->nodes[i])];
-        if (node < 0) continue;
-        kept.local.col(static_cast<Eigen::Index>(kept.nodes.size())) = anchor->local.col(static_cast<Eigen::Index>(i));
-        kept.nodes.push_back(node);
+        for (const int node : copies[static_cast<std::size_t>(anchor->nodes[i])]) {
+          kept.nodes.push_back(node);
+          local.push_back(anchor->local.col(static_cast<Eigen::Index>(i)));
+        }
       }
-      kept.local.conservativeResize(3, static_cast<Eigen::Index>(kept.nodes.size()));
+      kept.local.resize(3, static_cast<Eigen::Index>(local.size()));
+      for (std::size_t i = 0; i < local.size(); ++i) kept.local.col(static_cast<Eigen::Index>(i)) = local[i];
       if (!kept.nodes.empty()) carried = std::move(kept);
     }
     after.anchors_.push_back(std::move(carried));
   }
-  after.update_surface();
-  *this = std::move(after);
-  return cut;
 }
 
 }  // namespace cubespring::bullet

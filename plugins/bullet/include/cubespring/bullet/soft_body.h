@@ -145,6 +145,23 @@ class SoftBody {
   /// moving on its own. Errors, with nothing changed: a cell out of range, a cut that would leave
   /// no cell.
   Result<Cut> remove_cells(const std::vector<int>& cells);
+  /// What split_faces() did.
+  struct Split {
+    int faces_split = 0;  ///< faces split by the call (those split before, or listed twice, once)
+    int nodes_added = 0;  ///< copies of nodes the split parted
+    int pieces = 0;       ///< pieces the body is in after the split
+    /// Node n now was node source_node[n] before (a node's copies share it).
+    std::vector<int> source_node;
+  };
+  /// Splits faces between the body's cells between world steps, as a blade separates tissue
+  /// (cubespring/face_split.h, docs/cutting.md): nothing leaves, the nodes the split parts are
+  /// duplicated, one for each side. The body is rebuilt with its settings as by remove_cells();
+  /// its state, constraints, nodal loads (shared between copies by mass) and anchors (on every
+  /// copy) carried. Only a body whose surface is its lattice's: a visual mesh does not follow a
+  /// split yet, and a body with one is refused. A split body steps on the spring lists. Errors,
+  /// with nothing changed: a face whose axis or cells are not the body's, a body with a visual
+  /// mesh.
+  Result<Split> split_faces(const std::vector<CellFace>& faces);
   /// The first surface triangle a segment from `from` to `to` [m] crosses: for picking.
   struct RayHit {
     int triangle = -1;
@@ -206,6 +223,10 @@ class SoftBody {
   /// (stiffness_row_sums()): given, as a cut carries them, or else summed here.
   static Result<std::unique_ptr<SoftBody>> assemble(const SoftBodySettings& settings, Model model,
                                                     std::optional<Eigen::VectorXd> row_sums = std::nullopt);
+  /// What `after`, this body made again after a change of its cells, keeps of it: the user's
+  /// step settings, its timers, reports and cutting history, and its anchors, each node's on
+  /// every node that came from it (new node n came from node source_node[n] of this body).
+  void hand_over(SoftBody& after, const std::vector<int>& source_node);
   /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
   void index_vertices_by_node();
   /// Contact-surface vertex v from its nodes; returns how far it moved, squared [m^2] (a square
