@@ -144,16 +144,10 @@ Result<SoftBody::Cut> SoftBody::remove_cells(const std::vector<int>& cells) {
   }
   Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(removal->model), std::move(row_sums));
   if (!rebuilt) return Status::error("remove_cells: " + rebuilt.message());
-  SoftBody& after = **rebuilt;
-  const std::vector<int> source_node = std::move(removal->source_node);
-  after.state_ = std::move(removal->state);
-  after.constraints_ = std::move(removal->constraints);
-  after.loads_ = std::move(loads);
-  after.removed_cells_ = std::move(removed);
-  after.visual_keys_ = std::move(visual_keys);
-  hand_over(after, source_node);
-  after.update_surface();
-  *this = std::move(after);
+  (*rebuilt)->removed_cells_ = std::move(removed);
+  (*rebuilt)->visual_keys_ = std::move(visual_keys);
+  take_over(std::move(*rebuilt), std::move(removal->state), std::move(removal->constraints), std::move(loads),
+            removal->source_node);
   return cut;
 }
 
@@ -177,19 +171,19 @@ Result<SoftBody::Split> SoftBody::split_faces(const std::vector<CellFace>& faces
   // the nodes given copies have new rows: the stable steps sum the stiffness again
   Result<std::unique_ptr<SoftBody>> rebuilt = assemble(settings, std::move(split->model));
   if (!rebuilt) return Status::error("split_faces: " + rebuilt.message());
-  SoftBody& after = **rebuilt;
-  after.state_ = std::move(split->state);
-  after.constraints_ = std::move(split->constraints);
-  after.loads_ = std::move(loads);
-  after.removed_cells_ = removed_cells_;
-  after.visual_keys_ = visual_keys_;
-  hand_over(after, done.source_node);
-  after.update_surface();
-  *this = std::move(after);
+  (*rebuilt)->removed_cells_ = removed_cells_;
+  (*rebuilt)->visual_keys_ = visual_keys_;
+  take_over(std::move(*rebuilt), std::move(split->state), std::move(split->constraints), std::move(loads),
+            done.source_node);
   return done;
 }
 
-void SoftBody::hand_over(SoftBody& after, const std::vector<int>& source_node) {
+void SoftBody::take_over(std::unique_ptr<SoftBody> rebuilt, State state, Constraints constraints, Loads loads,
+                         const std::vector<int>& source_node) {
+  SoftBody& after = *rebuilt;
+  after.state_ = std::move(state);
+  after.constraints_ = std::move(constraints);
+  after.loads_ = std::move(loads);
   after.step_settings_ = step_settings_;  // threads and the integrator as the user left them
   after.times_ = times_;
   after.last_report_ = last_report_;
@@ -216,6 +210,8 @@ void SoftBody::hand_over(SoftBody& after, const std::vector<int>& source_node) {
     }
     after.anchors_.push_back(std::move(carried));
   }
+  after.update_surface();
+  *this = std::move(after);
 }
 
 }  // namespace cubespring::bullet

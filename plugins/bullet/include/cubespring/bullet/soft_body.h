@@ -223,10 +223,12 @@ class SoftBody {
   /// (stiffness_row_sums()): given, as a cut carries them, or else summed here.
   static Result<std::unique_ptr<SoftBody>> assemble(const SoftBodySettings& settings, Model model,
                                                     std::optional<Eigen::VectorXd> row_sums = std::nullopt);
-  /// What `after`, this body made again after a change of its cells, keeps of it: the user's
-  /// step settings, its timers, reports and cutting history, and its anchors, each node's on
-  /// every node that came from it (new node n came from node source_node[n] of this body).
-  void hand_over(SoftBody& after, const std::vector<int>& source_node);
+  /// Becomes `rebuilt`, this body made again after a change of its cells, in `state` under
+  /// `constraints` and `loads`, keeping of itself the user's step settings, its timers, reports
+  /// and the mesh it started with, and its anchors, each node's on every node that came from it
+  /// (new node n came from node source_node[n] of this body).
+  void take_over(std::unique_ptr<SoftBody> rebuilt, State state, Constraints constraints, Loads loads,
+                 const std::vector<int>& source_node);
   /// Builds node_vertex_offset_ / node_vertex_ from the surface's weights.
   void index_vertices_by_node();
   /// Contact-surface vertex v from its nodes; returns how far it moved, squared [m^2] (a square
